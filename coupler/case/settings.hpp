@@ -1,0 +1,86 @@
+#pragma once
+// Settings: one mapping of a case file (YAML or JSON), read key by key by the component it
+// configures. Every read records the key as valid, so that after all components are built
+// `check_unused_keys()` can report typos with the file, line, key path and the nearest valid key.
+#include <yaml-cpp/yaml.h>
+
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace cocopp {
+
+/// An error in a case file or a solver input file; the message names file, line and key path.
+class CaseError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class Settings {
+ public:
+  /// Parse a YAML or JSON file. Throws CaseError on a syntax error (with file and line).
+  static Settings load_file(const std::filesystem::path& file);
+  /// Parse text (for tests); `file_name` is used in messages.
+  static Settings load_string(const std::string& text, const std::string& file_name);
+
+  template <class T>
+  T required(const std::string& key) const;
+  template <class T>
+  T get(const std::string& key, const T& default_value) const;
+  /// A number in [min, max] (inclusive), with a default.
+  double get_in_range(const std::string& key, double default_value, double min,
+                      double max = std::numeric_limits<double>::infinity()) const;
+  double required_in_range(const std::string& key, double min,
+                           double max = std::numeric_limits<double>::infinity()) const;
+  int get_int_in_range(const std::string& key, int default_value, int min,
+                       int max = std::numeric_limits<int>::max()) const;
+  /// One of `choices`; error with did-you-mean otherwise.
+  std::string get_choice(const std::string& key, const std::string& default_value,
+                         const std::vector<std::string>& choices) const;
+
+  bool has(const std::string& key) const;
+  /// A nested mapping (required).
+  Settings child(const std::string& key) const;
+  /// A nested mapping, or an empty mapping at this node's location if absent.
+  Settings child_or_empty(const std::string& key) const;
+  /// A required sequence of mappings.
+  std::vector<Settings> list(const std::string& key) const;
+
+  /// Mark a key as valid without reading it (for keys read by someone else later).
+  void allow(const std::string& key) const;
+
+  /// "coupled_solver.model" ("" at the top level).
+  const std::string& path() const { return path_; }
+  /// "case.yaml:12:5" for this mapping, or for one of its keys.
+  std::string where(const std::string& key = "") const;
+  /// Directory of the case file: relative paths in settings are resolved against it.
+  std::filesystem::path base_directory() const;
+  const std::filesystem::path& file() const;
+
+  /// Throw CaseError "file:line:col: key.path: message".
+  [[noreturn]] void fail(const std::string& key, const std::string& message) const;
+
+  /// After all components are built: unknown keys anywhere in the file are errors.
+  void check_unused_keys() const;
+
+  /// The raw node (for components that parse free-form data).
+  const YAML::Node& node() const { return node_; }
+
+ private:
+  struct Document;
+  Settings(std::shared_ptr<Document> document, YAML::Node node, std::string path);
+  YAML::Node lookup(const std::string& key) const;
+  std::string key_path(const std::string& key) const;
+  template <class T>
+  T convert(const YAML::Node& value, const std::string& key) const;
+
+  std::shared_ptr<Document> document_;
+  YAML::Node node_;
+  std::string path_;
+  std::size_t index_ = 0;  ///< this mapping's entry in document_->mappings
+};
+
+}  // namespace cocopp

@@ -1,0 +1,17 @@
+#pragma once
+// Helpers for error messages: nearest-name suggestions and lists.
+#include <string>
+#include <vector>
+
+namespace cocopp {
+
+/// Levenshtein edit distance between two strings.
+std::size_t edit_distance(const std::string& a, const std::string& b);
+
+/// "; did you mean 'x'?" for the closest candidate within a sensible distance, else "".
+std::string did_you_mean(const std::string& word, const std::vector<std::string>& candidates);
+
+/// "a, b, c"
+std::string join(const std::vector<std::string>& words, const std::string& separator = ", ");
+
+}  // namespace cocopp

@@ -1,0 +1,55 @@
+#pragma once
+// cocopp solver SDK: link this into a solver executable to be driven by the cocopp coupler.
+//
+//   class MySolver : public cocopp::sdk::Solver { ... };
+//   int main(int argc, char** argv) { MySolver s; return cocopp::sdk::serve(s, argc, argv); }
+//
+// serve() connects to the coupler (the channel is given in the environment, see
+// docs/protocol.md), answers its requests until told to stop and returns the exit code.
+// Exceptions thrown by the Solver's methods are sent to the coupler as error messages.
+// The SDK has no dependency beyond the C++ standard library.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace cocopp::sdk {
+
+struct ModelPart {
+  std::string name;
+  std::vector<std::int64_t> ids;
+  std::vector<double> coordinates;  ///< initial coordinates, x y z per point (3 * ids.size())
+  std::vector<std::string> input_variables;   ///< e.g. {"displacement"}
+  std::vector<std::string> output_variables;  ///< e.g. {"pressure", "traction"}
+};
+
+/// What a solver tells the coupler at initialization.
+struct InterfaceDescription {
+  std::vector<ModelPart> model_parts;
+  /// Initial values of the output interface, in the flattened layout (may be empty: zeros).
+  std::vector<double> initial_output;
+};
+
+/// Run information the coupler sends with the initialize request.
+struct RunInfo {
+  double delta_t = 0.0;
+  std::int32_t timestep_start = 0;
+};
+
+/// Interface data layout (both directions): for each model part in order, for each of its
+/// (input or output) variables in order, all points, components contiguous.
+class Solver {
+ public:
+  virtual ~Solver() = default;
+  virtual InterfaceDescription initialize(const RunInfo& run) = 0;
+  virtual void initialize_step(std::int32_t step, double time) = 0;
+  /// One coupling iteration: solve from the state of the last committed step.
+  virtual std::vector<double> solve(const std::vector<double>& input) = 0;
+  virtual void finalize_step() = 0;
+  virtual void output_step() {}
+  virtual void finalize() {}
+};
+
+/// Serve the coupler's requests until it says stop. Returns 0 on a normal stop, 1 on errors.
+int serve(Solver& solver, int argc, char** argv);
+
+}  // namespace cocopp::sdk

@@ -1,0 +1,50 @@
+#pragma once
+// SolverWrapper: what the coupled solvers see of a solver. Every wrapper (a solver process, a
+// mapped wrapper, later OpenFOAM and CalculiX) implements this, so the coupling algorithms never
+// know which solver is behind an interface.
+#include <filesystem>
+#include <string>
+
+#include "coupler/case/registry.hpp"
+#include "coupler/data/interface.hpp"
+
+namespace cocopp {
+
+/// Run settings every wrapper needs (from the case file's `settings` section).
+struct RunSettings {
+  double delta_t = 0.0;
+  int timestep_start = 0;
+  int number_of_timesteps = 0;
+  std::filesystem::path case_directory;  ///< relative paths in the case are resolved here
+};
+
+class SolverWrapper {
+ public:
+  static constexpr const char* kind = "solver wrapper";
+  virtual ~SolverWrapper() = default;
+
+  /// The name used in messages and results (`name` in the case, default: the type).
+  virtual const std::string& name() const = 0;
+  /// Validate what can be validated without running (input files exist, executable found).
+  virtual void check() const {}
+
+  /// Start the solver and learn its interfaces (layout and initial values).
+  virtual void initialize() = 0;
+  virtual const Interface& input_interface() const = 0;
+  virtual const Interface& output_interface() const = 0;
+
+  /// Advance to time step `step` (time = step * delta_t).
+  virtual void initialize_step(int step, double time) = 0;
+  /// One coupling iteration: solve the step with `input`, return the output interface.
+  virtual const Interface& solve(const Interface& input) = 0;
+  /// Commit the converged state of the step.
+  virtual void finalize_step() = 0;
+  /// Write the solver's own output for the step.
+  virtual void output_step() = 0;
+  /// Stop the solver. Safe to call more than once, and after a failure.
+  virtual void finalize() = 0;
+};
+
+using SolverWrapperRegistry = Registry<SolverWrapper, const RunSettings&>;
+
+}  // namespace cocopp
