@@ -1,0 +1,501 @@
+#include "coupler/results/results_writer.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <ctime>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <utility>
+
+#include "coupler/data/variables.hpp"
+
+#ifndef COCOPP_VERSION
+#define COCOPP_VERSION "unknown"  // set from PROJECT_VERSION in coupler/CMakeLists.txt
+#endif
+
+namespace cocopp {
+namespace {
+
+/// An HDF5 call failed; the public methods add the file name.
+class H5Error : public std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// HDF5 prints its error stack to stderr by default. The writer reports failures as exceptions
+// that carry the innermost HDF5 message instead, so printing is off while it works.
+class QuietErrors {
+ public:
+  QuietErrors() {
+    H5Eget_auto2(H5E_DEFAULT, &function_, &data_);
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
+  ~QuietErrors() { H5Eset_auto2(H5E_DEFAULT, function_, data_); }
+  QuietErrors(const QuietErrors&) = delete;
+  QuietErrors& operator=(const QuietErrors&) = delete;
+
+ private:
+  H5E_auto2_t function_ = nullptr;
+  void* data_ = nullptr;
+};
+
+herr_t keep_innermost(unsigned n, const H5E_error2_t* error, void* out) {
+  if (n == 0 && error->desc) *static_cast<std::string*>(out) = error->desc;
+  return 0;
+}
+
+/// The most specific message on the HDF5 error stack (e.g. the errno text of a failed open).
+std::string hdf5_error() {
+  std::string detail;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, keep_innermost, &detail);
+  return detail.empty() ? "unknown HDF5 error" : detail;
+}
+
+/// Returns `id` (or status) unless it signals an HDF5 failure.
+template <typename Id>
+Id checked(Id id, const std::string& what) {
+  if (id < 0) throw H5Error(what + " failed: " + hdf5_error());
+  return id;
+}
+
+std::string iso_time_now() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
+// Attributes are declared UTF-8 (so h5py returns str, not bytes); messages may quote solver
+// output with arbitrary bytes, which would make reading them fail. Invalid bytes become U+FFFD.
+std::string valid_utf8(const std::string& text) {
+  using nlohmann::json;
+  return json::parse(json(text).dump(-1, ' ', false, json::error_handler_t::replace))
+      .get<std::string>();
+}
+
+H5Handle string_type() {
+  H5Handle type(checked(H5Tcopy(H5T_C_S1), "H5Tcopy"), H5Tclose);
+  checked(H5Tset_size(type.get(), H5T_VARIABLE), "H5Tset_size");
+  checked(H5Tset_cset(type.get(), H5T_CSET_UTF8), "H5Tset_cset");
+  return type;
+}
+
+/// The enum h5py reads as numpy bool.
+H5Handle bool_type() {
+  H5Handle type(checked(H5Tenum_create(H5T_NATIVE_INT8), "H5Tenum_create"), H5Tclose);
+  const std::int8_t no = 0, yes = 1;
+  checked(H5Tenum_insert(type.get(), "FALSE", &no), "H5Tenum_insert");
+  checked(H5Tenum_insert(type.get(), "TRUE", &yes), "H5Tenum_insert");
+  return type;
+}
+
+H5Handle dataspace(const std::vector<hsize_t>& dims, const hsize_t* max_dims = nullptr) {
+  const int rank = static_cast<int>(dims.size());
+  return {checked(rank == 0 ? H5Screate(H5S_SCALAR) : H5Screate_simple(rank, dims.data(), max_dims),
+                  "H5Screate"),
+          H5Sclose};
+}
+
+/// Creates (or replaces: statuses are rewritten at close) attribute `name` and writes `data`;
+/// dims {} makes a scalar attribute.
+void set_attribute(hid_t object, const std::string& name, hid_t file_type, hid_t memory_type,
+                   const std::vector<hsize_t>& dims, const void* data) {
+  if (checked(H5Aexists(object, name.c_str()), "H5Aexists " + name) > 0)
+    checked(H5Adelete(object, name.c_str()), "deleting attribute " + name);
+  const H5Handle space = dataspace(dims);
+  const H5Handle attribute(
+      checked(H5Acreate2(object, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+              "creating attribute " + name),
+      H5Aclose);
+  // H5Awrite rejects a null buffer, which an empty std::vector may hand over.
+  if (!dims.empty() && dims[0] == 0) return;
+  checked(H5Awrite(attribute.get(), memory_type, data), "writing attribute " + name);
+}
+
+void set_string(hid_t object, const std::string& name, const std::string& value) {
+  const std::string text = valid_utf8(value);
+  const char* pointer = text.c_str();
+  const H5Handle type = string_type();
+  set_attribute(object, name, type.get(), type.get(), {}, &pointer);
+}
+
+void set_strings(hid_t object, const std::string& name, const std::vector<std::string>& values) {
+  std::vector<std::string> texts;
+  for (const auto& value : values) texts.push_back(valid_utf8(value));
+  std::vector<const char*> pointers;
+  for (const auto& text : texts) pointers.push_back(text.c_str());
+  const H5Handle type = string_type();
+  set_attribute(object, name, type.get(), type.get(), {pointers.size()}, pointers.data());
+}
+
+void set_double(hid_t object, const std::string& name, double value) {
+  set_attribute(object, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {}, &value);
+}
+
+void set_int(hid_t object, const std::string& name, std::int64_t value) {
+  set_attribute(object, name, H5T_STD_I64LE, H5T_NATIVE_INT64, {}, &value);
+}
+
+void set_ints(hid_t object, const std::string& name, const std::vector<std::int64_t>& values) {
+  set_attribute(object, name, H5T_STD_I64LE, H5T_NATIVE_INT64, {values.size()}, values.data());
+}
+
+H5Handle create_group(hid_t parent, const std::string& name) {
+  // Tracking creation order keeps model parts in interface order for readers that honour it.
+  const H5Handle properties(checked(H5Pcreate(H5P_GROUP_CREATE), "H5Pcreate"), H5Pclose);
+  checked(
+      H5Pset_link_creation_order(properties.get(), H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED),
+      "H5Pset_link_creation_order");
+  return {checked(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, properties.get(), H5P_DEFAULT),
+                  "creating group " + name),
+          H5Gclose};
+}
+
+/// A dataset of fixed shape, written once (model part ids and coordinates).
+void write_fixed(hid_t parent, const std::string& name, hid_t file_type, hid_t memory_type,
+                 const std::vector<hsize_t>& dims, const void* data, const char* unit) {
+  const H5Handle space = dataspace(dims);
+  const H5Handle dataset(checked(H5Dcreate2(parent, name.c_str(), file_type, space.get(),
+                                            H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                                 "creating dataset " + name),
+                         H5Dclose);
+  if (unit) set_string(dataset.get(), "unit", unit);
+  if (std::find(dims.begin(), dims.end(), hsize_t{0}) != dims.end()) return;
+  checked(H5Dwrite(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
+          "writing dataset " + name);
+}
+
+/// Rows per chunk: about 8 KiB of values, at least one row. Small series then do not cost one
+/// chunk per step, and an interface block larger than that is one chunk per step.
+hsize_t rows_per_chunk(const std::vector<hsize_t>& row_shape) {
+  hsize_t row = 1;
+  for (hsize_t extent : row_shape) row *= std::max<hsize_t>(extent, 1);
+  return std::max<hsize_t>(1, 1024 / row);
+}
+
+H5Handle create_extendible(hid_t parent, const std::string& name, hid_t file_type,
+                           const std::vector<hsize_t>& row_shape) {
+  std::vector<hsize_t> dims{0}, max_dims{H5S_UNLIMITED}, chunk{rows_per_chunk(row_shape)};
+  for (hsize_t extent : row_shape) {
+    dims.push_back(extent);
+    // Chunks cannot be larger than a fixed dimension, and 0 is no chunk size: a dimension of
+    // length 0 (a model part without points) is declared extendible instead; it never grows.
+    max_dims.push_back(extent > 0 ? extent : H5S_UNLIMITED);
+    chunk.push_back(std::max<hsize_t>(extent, 1));
+  }
+  const H5Handle space = dataspace(dims, max_dims.data());
+  const H5Handle properties(checked(H5Pcreate(H5P_DATASET_CREATE), "H5Pcreate"), H5Pclose);
+  checked(H5Pset_chunk(properties.get(), static_cast<int>(chunk.size()), chunk.data()),
+          "H5Pset_chunk " + name);
+  return {checked(H5Dcreate2(parent, name.c_str(), file_type, space.get(), H5P_DEFAULT,
+                             properties.get(), H5P_DEFAULT),
+                  "creating dataset " + name),
+          H5Dclose};
+}
+
+std::string object_name(hid_t object) {
+  char name[256] = "?";
+  H5Iget_name(object, name, sizeof name);
+  return name;
+}
+
+/// Sets the dataset to first + rows rows and writes `rows` rows from `data` at row `first`.
+/// Setting (not growing) the extent lets a retried step overwrite a partially written one.
+void write_rows(hid_t dataset, const std::vector<hsize_t>& row_shape, hsize_t first, hsize_t rows,
+                hid_t memory_type, const void* data) {
+  std::vector<hsize_t> extent{first + rows};
+  extent.insert(extent.end(), row_shape.begin(), row_shape.end());
+  const std::string what = "writing " + object_name(dataset);
+  checked(H5Dset_extent(dataset, extent.data()), what);
+  std::vector<hsize_t> count = extent;
+  count[0] = rows;
+  if (std::find(count.begin(), count.end(), hsize_t{0}) != count.end()) return;
+  std::vector<hsize_t> start(extent.size(), 0);
+  start[0] = first;
+  const H5Handle file_space(checked(H5Dget_space(dataset), what), H5Sclose);
+  checked(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(),
+                              nullptr),
+          what);
+  const H5Handle memory_space = dataspace(count);
+  checked(H5Dwrite(dataset, memory_type, memory_space.get(), file_space.get(), H5P_DEFAULT, data),
+          what);
+}
+
+/// Model part and variable names become HDF5 link names: no '/', not empty, not ".".
+void check_link_name(const std::string& name, const std::string& what) {
+  if (name.empty() || name == "." || name.find('/') != std::string::npos)
+    throw std::invalid_argument("cannot write " + what + " '" + name +
+                                "' to the results file: names must be non-empty, not '.', and "
+                                "without '/'");
+}
+
+void check_names(const Interface& interface) {
+  for (const auto& part : interface.parts()) {
+    check_link_name(part.model_part->name, "model part");
+    for (const auto& variable : part.variables)
+      if (variable == "ids" || variable == "coordinates")
+        throw std::invalid_argument("variable '" + variable +
+                                    "' clashes with the model part "
+                                    "dataset of the same name in the results file");
+  }
+}
+
+bool same_blocks(const Interface::Block& a, const Interface::Block& b) {
+  return a.model_part == b.model_part && a.variable == b.variable && a.offset == b.offset &&
+         a.points == b.points && a.components == b.components;
+}
+
+std::string describe(const std::vector<Interface::Block>& blocks) {
+  std::string out;
+  for (const auto& b : blocks) {
+    if (!out.empty()) out += "; ";
+    out += b.model_part + ": " + b.variable + " (" + std::to_string(b.points) + " x " +
+           std::to_string(b.components) + ")";
+  }
+  return out.empty() ? "empty" : out;
+}
+
+constexpr const char* kXRole = "displacement interface: input of the flow solver";
+constexpr const char* kYRole = "loads interface: output of the flow solver";
+
+}  // namespace
+
+ResultsWriter::ResultsWriter(const std::filesystem::path& file, const RunDescription& run,
+                             const Interface& x, const Interface& y)
+    : path_(file), solver_count_(run.solver_names.size()) {
+  check_names(x);
+  check_names(y);
+  if (path_.has_parent_path()) std::filesystem::create_directories(path_.parent_path());
+  const QuietErrors quiet;
+  try {
+    create_file();
+    write_run_attributes(run);
+    x_blocks_ = create_interface("x", kXRole, x);
+    y_blocks_ = create_interface("y", kYRole, y);
+    create_step_series();
+    flush();
+  } catch (const H5Error& error) {
+    release();
+    fail(error);
+  }
+}
+
+ResultsWriter::~ResultsWriter() {
+  if (!is_open()) return;
+  try {
+    close("incomplete",
+          "the results writer was destroyed without close(): the run ended without saying how");
+  } catch (...) {
+    // A destructor must not throw; the file keeps what the last flush wrote.
+  }
+}
+
+void ResultsWriter::create_file() {
+  // Default (earliest) format bounds on purpose: the superblock then has no "open for writing"
+  // flag, so a copy taken after a flush, while the run still writes, opens like any other file.
+  const H5Handle properties(checked(H5Pcreate(H5P_FILE_CREATE), "H5Pcreate"), H5Pclose);
+  checked(
+      H5Pset_link_creation_order(properties.get(), H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED),
+      "H5Pset_link_creation_order");
+  file_ = H5Handle(checked(H5Fcreate(path_.c_str(), H5F_ACC_TRUNC, properties.get(), H5P_DEFAULT),
+                           "creating the file"),
+                   H5Fclose);
+}
+
+void ResultsWriter::write_run_attributes(const RunDescription& run) {
+  const hid_t root = file_.get();
+  set_string(root, "cocopp_version", COCOPP_VERSION);
+  set_string(root, "case_file", run.case_file);
+  set_string(root, "coupled_solver", run.coupled_solver);
+  set_strings(root, "solver_names", run.solver_names);
+  set_double(root, "delta_t", run.delta_t);
+  set_int(root, "timestep_start", run.timestep_start);
+  set_int(root, "number_of_timesteps", run.number_of_timesteps);
+  set_string(root, "created", iso_time_now());
+  set_string(root, "status", "running");
+  set_string(root, "message", "");
+}
+
+std::vector<ResultsWriter::BlockSeries> ResultsWriter::create_interface(
+    const char* name, const char* role, const Interface& interface) {
+  const H5Handle group = create_group(file_.get(), name);
+  set_string(group.get(), "role", role);
+  std::vector<std::string> parts;
+  for (const auto& part : interface.parts()) parts.push_back(part.model_part->name);
+  set_strings(group.get(), "model_parts", parts);
+  set_int(group.get(), "size", interface.size());
+
+  // The flat layout of Interface::data(), so a reader can rebuild the vector the coupled
+  // solver works on: values[offset:offset + size] = group[model_part][variable][row].ravel().
+  std::vector<std::string> model_parts, variables;
+  std::vector<std::int64_t> offsets, sizes, points, components;
+  for (const auto& b : interface.blocks()) {
+    model_parts.push_back(b.model_part);
+    variables.push_back(b.variable);
+    offsets.push_back(b.offset);
+    sizes.push_back(b.points * b.components);
+    points.push_back(b.points);
+    components.push_back(b.components);
+  }
+  set_strings(group.get(), "block_model_part", model_parts);
+  set_strings(group.get(), "block_variable", variables);
+  set_ints(group.get(), "block_offset", offsets);
+  set_ints(group.get(), "block_size", sizes);
+  set_ints(group.get(), "block_points", points);
+  set_ints(group.get(), "block_components", components);
+
+  std::vector<BlockSeries> out;
+  for (const auto& part : interface.parts()) {
+    const ModelPart& model_part = *part.model_part;
+    const H5Handle part_group = create_group(group.get(), model_part.name);
+    const hsize_t n = model_part.size();
+    write_fixed(part_group.get(), "ids", H5T_STD_I64LE, H5T_NATIVE_INT64, {n},
+                model_part.ids.data(), nullptr);
+    // Coordinates is row-major n x 3, the layout HDF5 expects.
+    write_fixed(part_group.get(), "coordinates", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {n, 3},
+                model_part.coordinates.data(), "m");
+    for (const auto& variable : part.variables) {
+      const Interface::Block& b = interface.block(model_part.name, variable);
+      const std::vector<hsize_t> row{n, static_cast<hsize_t>(b.components)};
+      out.push_back({b, create_series(part_group.get(), variable.c_str(), H5T_IEEE_F64LE, row,
+                                      variable_info(variable).unit.c_str())});
+    }
+  }
+  return out;
+}
+
+ResultsWriter::Series ResultsWriter::create_series(hid_t group, const char* name, hid_t file_type,
+                                                   std::vector<hsize_t> row_shape,
+                                                   const char* unit) {
+  Series series{create_extendible(group, name, file_type, row_shape), std::move(row_shape)};
+  if (unit) set_string(series.dataset.get(), "unit", unit);
+  return series;
+}
+
+void ResultsWriter::create_step_series() {
+  const H5Handle steps = create_group(file_.get(), "steps");
+  const hid_t g = steps.get();
+  const H5Handle boolean = bool_type();
+  steps_.step = create_series(g, "step", H5T_STD_I32LE, {}, nullptr);
+  steps_.time = create_series(g, "time", H5T_IEEE_F64LE, {}, "s");
+  steps_.iterations = create_series(g, "iterations", H5T_STD_I32LE, {}, nullptr);
+  steps_.converged = create_series(g, "converged", boolean.get(), {}, nullptr);
+  steps_.wall_time = create_series(g, "wall_time", H5T_IEEE_F64LE, {}, "s");
+  steps_.coupler_time = create_series(g, "coupler_time", H5T_IEEE_F64LE, {}, "s");
+  steps_.solver_times = create_series(g, "solver_times", H5T_IEEE_F64LE, {solver_count_}, "s");
+
+  const H5Handle residuals = create_group(file_.get(), "residuals");
+  const hid_t r = residuals.get();
+  steps_.norms = create_series(r, "norms", H5T_IEEE_F64LE, {}, nullptr);
+  steps_.offset = create_series(r, "offset", H5T_STD_I64LE, {}, nullptr);
+  steps_.count = create_series(r, "count", H5T_STD_I64LE, {}, nullptr);
+}
+
+void ResultsWriter::write_step(const StepRecord& record, const Interface& x, const Interface& y) {
+  if (!is_open())
+    throw std::logic_error("results file '" + path_.string() + "': write_step after close");
+  check_step(record, x, y);
+  const QuietErrors quiet;
+  try {
+    write_interface(x_blocks_, x);
+    write_interface(y_blocks_, y);
+    write_residuals(record);
+    write_step_scalars(record);
+    flush();
+  } catch (const H5Error& error) {
+    fail(error);
+  }
+  ++steps_written_;
+  norms_written_ += record.residual_norms.size();
+}
+
+void ResultsWriter::check_step(const StepRecord& record, const Interface& x,
+                               const Interface& y) const {
+  const auto check_layout = [&](const char* name, const std::vector<BlockSeries>& expected,
+                                const Interface& given) {
+    std::vector<Interface::Block> blocks;
+    for (const auto& b : expected) blocks.push_back(b.block);
+    const auto& actual = given.blocks();
+    if (!std::equal(blocks.begin(), blocks.end(), actual.begin(), actual.end(), same_blocks))
+      throw std::invalid_argument("results file '" + path_.string() + "': interface " + name +
+                                  " of step " + std::to_string(record.step) + " has layout " +
+                                  given.describe() + ", the file was created for " +
+                                  describe(blocks));
+  };
+  check_layout("x", x_blocks_, x);
+  check_layout("y", y_blocks_, y);
+  if (record.solver_times.size() != solver_count_)
+    throw std::invalid_argument(
+        "results file '" + path_.string() + "': step " + std::to_string(record.step) + " has " +
+        std::to_string(record.solver_times.size()) + " solver times, expected one per solver (" +
+        std::to_string(solver_count_) + ")");
+}
+
+void ResultsWriter::write_interface(const std::vector<BlockSeries>& blocks,
+                                    const Interface& interface) {
+  for (const auto& b : blocks)
+    write_row(b.series, H5T_NATIVE_DOUBLE, interface.data().data() + b.block.offset);
+}
+
+void ResultsWriter::write_residuals(const StepRecord& record) {
+  const auto& norms = record.residual_norms;
+  write_rows(steps_.norms.dataset.get(), {}, norms_written_, norms.size(), H5T_NATIVE_DOUBLE,
+             norms.data());
+  const std::int64_t offset = static_cast<std::int64_t>(norms_written_);
+  const std::int64_t count = static_cast<std::int64_t>(norms.size());
+  write_row(steps_.offset, H5T_NATIVE_INT64, &offset);
+  write_row(steps_.count, H5T_NATIVE_INT64, &count);
+}
+
+void ResultsWriter::write_step_scalars(const StepRecord& record) {
+  const std::int8_t converged = record.converged ? 1 : 0;
+  const H5Handle boolean = bool_type();
+  write_row(steps_.time, H5T_NATIVE_DOUBLE, &record.time);
+  write_row(steps_.iterations, H5T_NATIVE_INT, &record.iterations);
+  write_row(steps_.converged, boolean.get(), &converged);
+  write_row(steps_.wall_time, H5T_NATIVE_DOUBLE, &record.wall_time);
+  write_row(steps_.coupler_time, H5T_NATIVE_DOUBLE, &record.coupler_time);
+  write_row(steps_.solver_times, H5T_NATIVE_DOUBLE, record.solver_times.data());
+  // Last, so that the length of steps/step counts the rows that are complete everywhere.
+  write_row(steps_.step, H5T_NATIVE_INT, &record.step);
+}
+
+void ResultsWriter::write_row(const Series& series, hid_t memory_type, const void* data) {
+  write_rows(series.dataset.get(), series.row_shape, steps_written_, 1, memory_type, data);
+}
+
+void ResultsWriter::flush() {
+  checked(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), "flushing the file");
+}
+
+void ResultsWriter::close(const std::string& status, const std::string& message) {
+  if (!is_open()) return;
+  if (status.empty()) throw std::invalid_argument("results file status must not be empty");
+  const QuietErrors quiet;
+  try {
+    const hid_t root = file_.get();
+    set_string(root, "status", status);
+    set_string(root, "message", message);
+    set_string(root, "finished", iso_time_now());
+    set_int(root, "steps_written", steps_written_);
+    checked(release(), "closing the file");
+  } catch (const H5Error& error) {
+    release();
+    fail(error);
+  }
+}
+
+herr_t ResultsWriter::release() {
+  // Datasets first: with the default (weak) close degree the file stays open while they are.
+  x_blocks_.clear();
+  y_blocks_.clear();
+  steps_ = StepSeries{};
+  return file_.reset();
+}
+
+void ResultsWriter::fail(const std::exception& error) const {
+  throw std::runtime_error("results file '" + path_.string() + "': " + error.what());
+}
+
+}  // namespace cocopp

@@ -1,0 +1,126 @@
+#pragma once
+// The HDF5 results file of a run, written step by step while the run goes.
+//
+// The file is flushed after every step, so a run that is killed leaves a readable file with all
+// steps written so far (its "status" attribute then still says "running"). The layout (groups,
+// datasets, shapes, units, attributes) is documented in docs/results.md; keep the two in sync.
+#include <hdf5.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "coupler/data/interface.hpp"
+#include "coupler/results/step_record.hpp"
+
+namespace cocopp {
+
+/// Owns one HDF5 identifier and releases it with the matching H5?close function.
+class H5Handle {
+ public:
+  using Closer = herr_t (*)(hid_t);
+
+  H5Handle() = default;
+  H5Handle(hid_t id, Closer closer) : id_(id), closer_(closer) {}
+  H5Handle(H5Handle&& other) noexcept { *this = std::move(other); }
+  H5Handle& operator=(H5Handle&& other) noexcept {
+    if (this != &other) {
+      reset();
+      id_ = other.id_;
+      closer_ = other.closer_;
+      other.id_ = H5I_INVALID_HID;
+    }
+    return *this;
+  }
+  H5Handle(const H5Handle&) = delete;
+  H5Handle& operator=(const H5Handle&) = delete;
+  ~H5Handle() { reset(); }
+
+  hid_t get() const { return id_; }
+  bool valid() const { return id_ >= 0; }
+  /// Closes now; returns the closer's status (0 if there was nothing to close).
+  herr_t reset() {
+    herr_t status = 0;
+    if (valid() && closer_) status = closer_(id_);
+    id_ = H5I_INVALID_HID;
+    return status;
+  }
+
+ private:
+  hid_t id_ = H5I_INVALID_HID;
+  Closer closer_ = nullptr;
+};
+
+class ResultsWriter {
+ public:
+  /// Creates the directory and the file (truncating an existing one) and writes the run
+  /// description and the layout of x (the displacement interface the flow solver takes) and y
+  /// (the loads interface). Throws std::invalid_argument for names HDF5 cannot hold and
+  /// std::runtime_error if the file cannot be written.
+  ResultsWriter(const std::filesystem::path& file, const RunDescription& run, const Interface& x,
+                const Interface& y);
+  /// Closes with status "incomplete" if close() was not called; never throws.
+  ~ResultsWriter();
+  ResultsWriter(const ResultsWriter&) = delete;
+  ResultsWriter& operator=(const ResultsWriter&) = delete;
+
+  /// Appends one step and flushes the file. x and y must have the layout given at construction
+  /// and record.solver_times one entry per solver (std::invalid_argument otherwise; nothing is
+  /// written then). If writing fails half-way, the next call overwrites the partial row.
+  void write_step(const StepRecord& record, const Interface& x, const Interface& y);
+
+  /// Writes the final status ("completed", "diverged", "solver_failed", "interrupted", ...) and
+  /// why the run stopped, and closes the file. Calling it again does nothing.
+  void close(const std::string& status, const std::string& message);
+
+  const std::filesystem::path& path() const { return path_; }
+  bool is_open() const { return file_.valid(); }
+  int steps_written() const { return steps_written_; }
+
+ private:
+  /// One extendible dataset, grown by one row (or by a run of values) per step.
+  struct Series {
+    H5Handle dataset;
+    std::vector<hsize_t> row_shape;  ///< shape of one row: {} for scalars, {n, c} for a block
+  };
+  /// Where one (model part, variable) block of an interface goes.
+  struct BlockSeries {
+    Interface::Block block;
+    Series series;
+  };
+  /// The per-step datasets of the groups "steps" and "residuals".
+  struct StepSeries {
+    Series step, time, iterations, converged, wall_time, coupler_time, solver_times;
+    Series norms, offset, count;
+  };
+
+  void create_file();
+  void write_run_attributes(const RunDescription& run);
+  std::vector<BlockSeries> create_interface(const char* name, const char* role,
+                                            const Interface& interface);
+  void create_step_series();
+  static Series create_series(hid_t group, const char* name, hid_t file_type,
+                              std::vector<hsize_t> row_shape, const char* unit);
+  void check_step(const StepRecord& record, const Interface& x, const Interface& y) const;
+  void write_interface(const std::vector<BlockSeries>& blocks, const Interface& interface);
+  void write_residuals(const StepRecord& record);
+  void write_step_scalars(const StepRecord& record);
+  void write_row(const Series& series, hid_t memory_type, const void* data);
+  void flush();
+  /// Closes every handle, the file last; returns the status of closing the file.
+  herr_t release();
+  [[noreturn]] void fail(const std::exception& error) const;
+
+  std::filesystem::path path_;
+  std::size_t solver_count_ = 0;
+  int steps_written_ = 0;
+  hsize_t norms_written_ = 0;
+
+  // Declared first so that it is destroyed last: the datasets below live in it.
+  H5Handle file_;
+  std::vector<BlockSeries> x_blocks_, y_blocks_;
+  StepSeries steps_;
+};
+
+}  // namespace cocopp

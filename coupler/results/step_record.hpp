@@ -1,0 +1,32 @@
+#pragma once
+// What the results writers (ResultsWriter: HDF5, RunSummary: JSON) are told about a run: a
+// description known at the start and one record per finished time step. Plain data, so the
+// coupled solvers fill them without depending on any file format.
+#include <string>
+#include <vector>
+
+namespace cocopp {
+
+/// What is known at the start of a run.
+struct RunDescription {
+  std::string case_file;                  ///< path as given on the command line
+  std::string coupled_solver;             ///< type, e.g. "iqni"
+  std::vector<std::string> solver_names;  ///< the two solver wrappers, in order
+  double delta_t = 0;                     ///< s
+  int timestep_start = 0;
+  int number_of_timesteps = 0;
+};
+
+/// One converged (or accepted) time step.
+struct StepRecord {
+  int step = 0;
+  double time = 0;                     ///< s, at the end of the step
+  int iterations = 0;                  ///< coupling iterations
+  std::vector<double> residual_norms;  ///< 2-norm of the residual, one per iteration
+  double wall_time = 0;                ///< s, whole step
+  std::vector<double> solver_times;    ///< s, per solver wrapper, same order as solver_names
+  double coupler_time = 0;             ///< s, wall_time minus the solver times
+  bool converged = true;  ///< false: accepted at an iteration limit without meeting the tolerance
+};
+
+}  // namespace cocopp
