@@ -25,6 +25,8 @@ class SolverWrapper {
 
   /// The name used in messages and results (`name` in the case, default: the type).
   virtual const std::string& name() const = 0;
+  /// One line for the run header: what runs where (command, working directory, log file).
+  virtual std::string describe() const { return name(); }
   /// Validate what can be validated without running (input files exist, executable found).
   virtual void check() const {}
 

@@ -88,9 +88,11 @@ std::string Settings::key_path(const std::string& key) const {
 }
 
 std::string Settings::where(const std::string& key) const {
-  YAML::Node value = key.empty() ? YAML::Node() : node_[key];
-  const YAML::Mark mark = (value && value.IsDefined()) ? value.Mark() : node_.Mark();
-  return location(document_->file, mark);
+  if (!key.empty()) {
+    const YAML::Node value = node_[key];
+    if (value.IsDefined()) return location(document_->file, value.Mark());
+  }
+  return location(document_->file, node_.Mark());
 }
 
 void Settings::fail(const std::string& key, const std::string& message) const {

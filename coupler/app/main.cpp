@@ -1,0 +1,69 @@
+// The `cocopp` command: run, check and list what a case file can name.
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "coupler/app/run.hpp"
+#include "coupler/case/suggest.hpp"
+#include "coupler/convergence/convergence_criterion.hpp"
+#include "coupler/coupled_solvers/coupled_solver.hpp"
+#include "coupler/coupled_solvers/models/model.hpp"
+#include "coupler/predictors/predictor.hpp"
+#include "solver_wrappers/solver_wrapper.hpp"
+
+namespace {
+
+void print_components() {
+  using namespace cocopp;
+  fmt::print("coupled solvers (coupled_solver.type): {}\n",
+             join(CoupledSolverRegistry::instance().names()));
+  fmt::print("models (coupled_solver.model.type): {}\n", join(ModelRegistry::instance().names()));
+  fmt::print("predictors (coupled_solver.predictor.type): {}\n",
+             join(PredictorRegistry::instance().names()));
+  fmt::print("convergence criteria (coupled_solver.convergence_criterion.type): {}\n",
+             join(ConvergenceCriterionRegistry::instance().names()));
+  fmt::print("solver wrappers (solver_wrappers[].type): {}\n",
+             join(SolverWrapperRegistry::instance().names()));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "cocopp: partitioned fluid-structure interaction.\n"
+      "A coupler process drives two solver executables (the first maps interface displacement "
+      "to loads, the second loads to displacement) and iterates every time step until they "
+      "agree. Everything is set in one case file (YAML or JSON); see docs/case-file.md."};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "cocopp 0.1.0");
+
+  std::string case_file;
+  cocopp::RunOptions options;
+  auto* run = app.add_subcommand(
+      "run",
+      "Run a case: start the solvers, march in time with the coupled solver, write "
+      "<results_directory>/<name>.h5 (HDF5, docs/results.md) and <name>.summary.json. Prints "
+      "one progress line per time step (a * marks a step accepted at the iteration limit) and "
+      "a timing summary. Exit code 0: completed; 1: the run stopped (divergence, solver "
+      "failure, interrupt; results so far are kept); 2: invalid case file.");
+  run->add_option("case", case_file, "case file (.yaml, .yml or .json)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  run->add_flag("-q,--quiet", options.quiet, "no progress line per time step");
+
+  auto* check = app.add_subcommand(
+      "check",
+      "Validate a case file without running it: every key, type, range and component name, "
+      "and that the solvers' working directories and executables exist. Exit code 0 if valid, "
+      "2 otherwise, with an error naming the file, line and key.");
+  check->add_option("case", case_file, "case file (.yaml, .yml or .json)")
+      ->required()
+      ->check(CLI::ExistingFile);
+
+  app.add_subcommand("components", "List the component types a case file can name.");
+
+  CLI11_PARSE(app, argc, argv);
+  if (*run) return cocopp::run_case(case_file, options);
+  if (*check) return cocopp::check_case(case_file);
+  print_components();
+  return 0;
+}

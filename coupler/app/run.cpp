@@ -1,0 +1,186 @@
+#include "coupler/app/run.hpp"
+
+#include <fmt/format.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <numeric>
+
+#include "coupler/app/case.hpp"
+#include "coupler/results/results_writer.hpp"
+#include "coupler/results/run_summary.hpp"
+#include "solver_wrappers/process/child_process.hpp"
+#include "solver_wrappers/solver_error.hpp"
+
+namespace cocopp {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::atomic<int> interrupt_signal{0};
+
+/// On Ctrl-C or a kill: stop the children at once (async-signal-safe), let the run loop notice
+/// the dead solvers, write what it has and exit.
+void on_interrupt(int signal) {
+  interrupt_signal = signal;
+  kill_all_children();
+}
+
+void print_header(const Case& c) {
+  fmt::print("cocopp 0.1.0: case {}\n", c.file.string());
+  fmt::print("  time steps     : {} .. {} of delta_t {:g} s (t = {:g} .. {:g} s)\n",
+             c.run.timestep_start + 1, c.run.timestep_start + c.run.number_of_timesteps,
+             c.run.delta_t, c.run.timestep_start * c.run.delta_t, c.end_time());
+  fmt::print("  coupled solver : {}\n", c.coupled_solver->describe());
+  for (std::size_t i = 0; i < c.solvers.size(); ++i)
+    fmt::print("  solver {}       : {}\n", i + 1, c.solvers[i]->describe());
+  fmt::print("  results        : {}\n", (c.results_directory / c.results_name).string() + ".h5");
+}
+
+RunDescription describe_run(const Case& c) {
+  RunDescription d;
+  d.case_file = c.file.string();
+  d.coupled_solver = c.coupled_solver_type;
+  for (const auto& s : c.solvers) d.solver_names.push_back(s->name());
+  d.delta_t = c.run.delta_t;
+  d.timestep_start = c.run.timestep_start;
+  d.number_of_timesteps = c.run.number_of_timesteps;
+  return d;
+}
+
+void print_progress(const StepRecord& r, int last_step) {
+  fmt::print("step {:>{}} / {}  t = {:<10.4g} iterations {:>3}  residual {:.3e}{}  {:8.3f} ms\n",
+             r.step, std::to_string(last_step).size(), last_step, r.time, r.iterations,
+             r.residual_norms.back(), r.converged ? " " : "*", 1e3 * r.wall_time);
+  std::fflush(stdout);
+}
+
+/// What stopped the run, for the results file, the summary and the exit code.
+struct Outcome {
+  std::string status = "completed";
+  std::string message;
+};
+
+class Run {
+ public:
+  explicit Run(Case& c) : case_(c), summary_(describe_run(c)) {}
+
+  Outcome execute(const RunOptions& options) {
+    Outcome outcome;
+    try {
+      march(options);
+    } catch (const DivergenceError& e) {
+      outcome = {"diverged", e.what()};
+    } catch (const SolverError& e) {
+      outcome = {"solver_failed", e.what()};
+    } catch (const std::exception& e) {
+      outcome = {"failed", e.what()};
+    }
+    if (interrupt_signal != 0)
+      outcome = {"interrupted", fmt::format("interrupted by signal {} ({})", interrupt_signal.load(),
+                                            strsignal(interrupt_signal))};
+    stop_solvers(outcome);
+    finish(outcome);
+    return outcome;
+  }
+
+ private:
+  void march(const RunOptions& options) {
+    CoupledSolver& coupled = *case_.coupled_solver;
+    coupled.initialize(*case_.solvers[0], *case_.solvers[1]);
+    writer_ = std::make_unique<ResultsWriter>(results_path(".h5"), describe_run(case_), coupled.x(),
+                                              coupled.y());
+    const int first = case_.run.timestep_start + 1;
+    const int last = case_.run.timestep_start + case_.run.number_of_timesteps;
+    for (int step = first; step <= last; ++step) {
+      const StepRecord record = coupled.solve_step(step, step * case_.run.delta_t);
+      writer_->write_step(record, coupled.x(), coupled.y());
+      summary_.add_step(record);
+      iterations_ += record.iterations;
+      algorithm_time_ += record.coupler_time;
+      if (!options.quiet) print_progress(record, last);
+    }
+  }
+
+  void stop_solvers(Outcome& outcome) {
+    for (auto& solver : case_.solvers) {
+      try {
+        solver->finalize();
+      } catch (const std::exception& e) {
+        if (outcome.status == "completed") outcome = {"solver_failed", e.what()};
+      }
+    }
+  }
+
+  std::filesystem::path results_path(const std::string& extension) const {
+    return case_.results_directory / (case_.results_name + extension);
+  }
+
+  void finish(const Outcome& outcome) {
+    const double wall = std::chrono::duration<double>(Clock::now() - start_).count();
+    const auto& solver_times = case_.coupled_solver->solver_time_total();
+    const double coupler = wall - solver_times[0] - solver_times[1];
+    if (writer_) writer_->close(outcome.status, outcome.message);
+    summary_.finish(outcome.status == "completed", outcome.status, outcome.message, wall,
+                    {solver_times[0], solver_times[1]}, coupler);
+    summary_.write(results_path(".summary.json"));
+
+    const int steps = writer_ ? writer_->steps_written() : 0;
+    fmt::print("\n{} after {} time step{} in {:.3f} s\n", outcome.status, steps,
+               steps == 1 ? "" : "s", wall);
+    for (std::size_t i = 0; i < 2; ++i)
+      fmt::print("  solver {:<12}: {:.3f} s\n", case_.solvers[i]->name(), solver_times[i]);
+    fmt::print("  coupler       : {:.3f} s ({:.1f} us per coupling iteration in the algorithm)\n",
+               coupler, iterations_ ? 1e6 * algorithm_time_ / iterations_ : 0.0);
+    if (steps > 0)
+      fmt::print("  iterations    : {:.2f} per time step on average ({} in all)\n",
+                 double(iterations_) / steps, iterations_);
+    if (writer_) fmt::print("  results       : {}\n", writer_->path().string());
+    fmt::print("  summary       : {}\n", results_path(".summary.json").string());
+    if (outcome.status != "completed") fmt::print(stderr, "\nerror: {}\n", outcome.message);
+  }
+
+  Case& case_;
+  RunSummary summary_;
+  std::unique_ptr<ResultsWriter> writer_;
+  Clock::time_point start_ = Clock::now();
+  long iterations_ = 0;
+  double algorithm_time_ = 0.0;
+};
+
+}  // namespace
+
+int run_case(const std::filesystem::path& case_file, const RunOptions& options) {
+  Case c;
+  try {
+    c = load_case(case_file);
+    for (const auto& solver : c.solvers) solver->check();
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 2;
+  }
+  print_header(c);
+  std::signal(SIGINT, on_interrupt);
+  std::signal(SIGTERM, on_interrupt);
+  std::signal(SIGHUP, on_interrupt);
+  const Outcome outcome = Run(c).execute(options);
+  return outcome.status == "completed" ? 0 : 1;
+}
+
+int check_case(const std::filesystem::path& case_file) {
+  try {
+    const Case c = load_case(case_file);
+    for (const auto& solver : c.solvers) solver->check();
+    fmt::print("{}: OK\n", case_file.string());
+    print_header(c);
+    return 0;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 2;
+  }
+}
+
+}  // namespace cocopp

@@ -1,0 +1,29 @@
+#pragma once
+// Convergence criteria decide when the coupling iterations of a time step stop.
+#include <Eigen/Core>
+#include <string>
+
+#include "coupler/case/registry.hpp"
+
+namespace cocopp {
+
+class ConvergenceCriterion {
+ public:
+  static constexpr const char* kind = "convergence criterion";
+  virtual ~ConvergenceCriterion() = default;
+
+  /// Called at the start of every time step.
+  virtual void initialize_step() = 0;
+  /// Called with the residual r = x~ - x of every coupling iteration.
+  virtual void update(const Eigen::VectorXd& residual) = 0;
+  /// Stop iterating.
+  virtual bool is_satisfied() const = 0;
+  /// Stopped because the tolerance was met (not only because of an iteration limit).
+  virtual bool tolerance_met() const { return is_satisfied(); }
+  /// One line for the run header, e.g. "relative_norm(2) < 1e-06".
+  virtual std::string describe() const = 0;
+};
+
+using ConvergenceCriterionRegistry = Registry<ConvergenceCriterion>;
+
+}  // namespace cocopp

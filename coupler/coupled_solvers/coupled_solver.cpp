@@ -1,0 +1,162 @@
+#include "coupler/coupled_solvers/coupled_solver.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+
+namespace cocopp {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+}  // namespace
+
+CoupledSolver::CoupledSolver(const Settings& settings)
+    : type_(settings.required<std::string>("type")),
+      predictor_type_(settings.child("predictor").required<std::string>("type")),
+      predictor_(PredictorRegistry::instance().create(settings.child("predictor"))),
+      criterion_(ConvergenceCriterionRegistry::instance().create(
+          settings.child("convergence_criterion"))),
+      divergence_factor_(
+          settings.child_or_empty("divergence").get_in_range("factor", 1e6, 1.0)) {}
+
+void CoupledSolver::initialize(SolverWrapper& first, SolverWrapper& second) {
+  solvers_ = {&first, &second};
+  for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->initialize(); });
+  check_interfaces_match();
+  x_ = first.input_interface();
+  y_ = first.output_interface();
+  // Start from the displacement the second solver reports for its initial state.
+  x_.set_data(second.output_interface().data());
+  predictor_->initialize(x_.data());
+}
+
+void CoupledSolver::check_interfaces_match() const {
+  const SolverWrapper& first = *solvers_[0];
+  const SolverWrapper& second = *solvers_[1];
+  auto mismatch = [](const SolverWrapper& from, const Interface& out, const SolverWrapper& to,
+                     const Interface& in) {
+    return std::runtime_error(fmt::format(
+        "the interfaces of the solvers do not fit together: '{}' gives [{}] but '{}' takes "
+        "[{}]. Both sides need the same model parts, point counts and variables in the same "
+        "order (non-matching meshes need a mapper)",
+        from.name(), out.describe(), to.name(), in.describe()));
+  };
+  if (!first.output_interface().same_layout(second.input_interface()))
+    throw mismatch(first, first.output_interface(), second, second.input_interface());
+  if (!second.output_interface().same_layout(first.input_interface()))
+    throw mismatch(second, second.output_interface(), first, first.input_interface());
+}
+
+template <class Call>
+void CoupledSolver::timed(int index, Call call) {
+  const auto start = Clock::now();
+  call();
+  const double elapsed = seconds_since(start);
+  solver_time_step_[index] += elapsed;
+  solver_time_total_[index] += elapsed;
+}
+
+const Interface& CoupledSolver::timed_solve(int index, const Interface& input) {
+  const Interface* output = nullptr;
+  timed(index, [&] { output = &solvers_[index]->solve(input); });
+  return *output;
+}
+
+StepRecord CoupledSolver::solve_step(int step, double time) {
+  const auto start = Clock::now();
+  solver_time_step_ = {0.0, 0.0};
+  StepRecord record;
+  record.step = step;
+  record.time = time;
+  for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->initialize_step(step, time); });
+
+  Eigen::VectorXd x = predictor_->predict();
+  criterion_->initialize_step();
+  on_step_start();
+  bool tolerance_met = false;
+  for (int iteration = 1;; ++iteration) {
+    const Eigen::VectorXd xt = evaluate(x, step, iteration);
+    const Eigen::VectorXd r = xt - x;
+    record.residual_norms.push_back(r.norm());
+    record.iterations = iteration;
+    check_divergence(record.residual_norms, step, time);
+    if (!iterates()) {
+      x = xt;  // explicit coupling accepts the structure's answer
+      tolerance_met = true;
+      break;
+    }
+    criterion_->update(r);
+    if (criterion_->is_satisfied()) {
+      tolerance_met = criterion_->tolerance_met();
+      break;
+    }
+    x = next_input(x, xt, r);
+  }
+  x_.set_data(x);
+  predictor_->update(x);
+  on_step_end();
+  for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->finalize_step(); });
+  for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->output_step(); });
+
+  record.converged = tolerance_met;
+  record.wall_time = seconds_since(start);
+  record.solver_times = {solver_time_step_[0], solver_time_step_[1]};
+  record.coupler_time = record.wall_time - solver_time_step_[0] - solver_time_step_[1];
+  return record;
+}
+
+Eigen::VectorXd CoupledSolver::evaluate(const Eigen::VectorXd& x, int step, int iteration) {
+  x_.set_data(x);
+  const Interface& y = timed_solve(0, x_);
+  check_finite(y, *solvers_[0], step, iteration);
+  y_.set_data(y.data());
+  const Interface& xt = timed_solve(1, y_);
+  check_finite(xt, *solvers_[1], step, iteration);
+  return xt.data();
+}
+
+void CoupledSolver::check_finite(const Interface& data, const SolverWrapper& solver, int step,
+                                 int iteration) const {
+  if (data.data().allFinite()) return;
+  for (const auto& block : data.blocks()) {
+    const auto values = data.values(block.model_part, block.variable);
+    for (Eigen::Index point = 0; point < values.rows(); ++point)
+      if (!values.row(point).allFinite())
+        throw DivergenceError(fmt::format(
+            "solver '{}' returned a non-finite {} at model part '{}', point {} (of {}), in time "
+            "step {}, coupling iteration {}. {}",
+            solver.name(), block.variable, block.model_part, point, values.rows(), step,
+            iteration, divergence_advice()));
+  }
+}
+
+void CoupledSolver::check_divergence(const std::vector<double>& norms, int step,
+                                     double time) const {
+  const double first = norms.front();
+  const double last = norms.back();
+  if (std::isfinite(last) && (first == 0.0 || last <= divergence_factor_ * first)) return;
+  throw DivergenceError(fmt::format(
+      "the coupling diverged in time step {} (t = {:g} s): the residual norm grew from {:.3e} "
+      "in iteration 1 to {:.3e} in iteration {} (more than coupled_solver.divergence.factor = "
+      "{:g} times). {}",
+      step, time, first, last, norms.size(), divergence_factor_, divergence_advice()));
+}
+
+std::string CoupledSolver::divergence_advice() const {
+  return "Strongly coupled problems (light structures, dense fluids) need a quasi-Newton "
+         "method: try coupled_solver type 'iqni' with model 'ls', or 'aitken', or a smaller "
+         "relaxation factor.";
+}
+
+std::string CoupledSolver::describe() const {
+  const std::string settings = describe_settings();
+  return fmt::format("{}{}, predictor {}, stop at {}", type_,
+                     settings.empty() ? "" : " (" + settings + ")",
+                     predictor_type_, criterion_->describe());
+}
+
+}  // namespace cocopp

@@ -1,0 +1,86 @@
+#pragma once
+// CoupledSolver: runs the coupling iterations of one time step between two solver wrappers.
+//
+// Notation (as in CoCoNuT): the first solver F maps the interface displacement x to loads y,
+// the second S maps y back to a displacement x~; the residual is r = x~ - x. The base class
+// owns the predictor, the convergence criterion and the divergence checks; each coupled solver
+// only says how the next x follows from x, x~ and r (`next_input`).
+#include <Eigen/Core>
+#include <array>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "coupler/convergence/convergence_criterion.hpp"
+#include "coupler/predictors/predictor.hpp"
+#include "coupler/results/step_record.hpp"
+#include "solver_wrappers/solver_wrapper.hpp"
+
+namespace cocopp {
+
+/// The coupling diverged (residual growth or non-finite data); the message says where and what
+/// to change.
+class DivergenceError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class CoupledSolver {
+ public:
+  static constexpr const char* kind = "coupled solver";
+  explicit CoupledSolver(const Settings& settings);
+  virtual ~CoupledSolver() = default;
+
+  /// Start both solvers and check that their interfaces fit together.
+  void initialize(SolverWrapper& first, SolverWrapper& second);
+  /// Advance, iterate to convergence, commit and write one time step.
+  StepRecord solve_step(int step, double time);
+  /// The interfaces with the converged values of the last step: x (displacement) and y (loads).
+  const Interface& x() const { return x_; }
+  const Interface& y() const { return y_; }
+  /// "iqni (omega 0.05, model ls q 10), predictor linear, until (...)": for the run header.
+  std::string describe() const;
+  /// Wall time spent in each solver since initialize(), in seconds.
+  const std::array<double, 2>& solver_time_total() const { return solver_time_total_; }
+
+ protected:
+  /// The next x of the iteration, given the current x, the output x~ of the second solver and
+  /// the residual r = x~ - x.
+  virtual Eigen::VectorXd next_input(const Eigen::VectorXd& x, const Eigen::VectorXd& xt,
+                                     const Eigen::VectorXd& r) = 0;
+  /// Hooks for methods with memory across iterations and steps.
+  virtual void on_step_start() {}
+  virtual void on_step_end() {}
+  /// Explicit coupling makes one pass per step.
+  virtual bool iterates() const { return true; }
+  /// The type's own settings for describe(), e.g. "omega 0.05".
+  virtual std::string describe_settings() const { return ""; }
+  /// What to suggest when this method diverges.
+  virtual std::string divergence_advice() const;
+
+  std::string type_;
+
+ private:
+  /// One coupling iteration: y = F(x), x~ = S(y). Returns x~.
+  Eigen::VectorXd evaluate(const Eigen::VectorXd& x, int step, int iteration);
+  const Interface& timed_solve(int index, const Interface& input);
+  template <class Call>
+  void timed(int index, Call call);
+  void check_finite(const Interface& data, const SolverWrapper& solver, int step,
+                    int iteration) const;
+  void check_divergence(const std::vector<double>& norms, int step, double time) const;
+  void check_interfaces_match() const;
+
+  std::string predictor_type_;
+  std::unique_ptr<Predictor> predictor_;
+  std::unique_ptr<ConvergenceCriterion> criterion_;
+  double divergence_factor_;
+  std::array<SolverWrapper*, 2> solvers_{};
+  Interface x_, y_;  ///< layouts of the first solver's input and output
+  std::array<double, 2> solver_time_step_{};
+  std::array<double, 2> solver_time_total_{};
+};
+
+using CoupledSolverRegistry = Registry<CoupledSolver>;
+
+}  // namespace cocopp

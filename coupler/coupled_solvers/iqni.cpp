@@ -1,0 +1,49 @@
+// iqni: interface quasi-Newton with an approximation of the inverse Jacobian (IQN-I), the
+// Jacobian model chosen by `model` (ls = IQN-ILS). x^(k+1) = x~^k + W c, where the model fits
+// V c ~ -r^k; relaxation with omega until the model has information.
+#include <fmt/format.h>
+
+#include "coupler/coupled_solvers/coupled_solver.hpp"
+#include "coupler/coupled_solvers/models/model.hpp"
+
+namespace cocopp {
+namespace {
+
+class Iqni : public CoupledSolver {
+ public:
+  explicit Iqni(const Settings& s)
+      : CoupledSolver(s),
+        omega_(s.get_in_range("omega", 0.01, 1e-12, 2.0)),
+        model_type_(s.child("model").required<std::string>("type")),
+        model_(ModelRegistry::instance().create(s.child("model"))) {}
+
+ protected:
+  void on_step_start() override { model_->initialize_step(); }
+  void on_step_end() override { model_->finalize_step(); }
+
+  Eigen::VectorXd next_input(const Eigen::VectorXd& x, const Eigen::VectorXd& xt,
+                             const Eigen::VectorXd& r) override {
+    model_->add(r, xt);
+    if (model_->is_ready()) {
+      const Eigen::VectorXd dxt = model_->predict(-r);
+      // Filtering may have removed every column: then relax as in the first iteration.
+      if (model_->columns() > 0) return xt + dxt;
+    }
+    return x + omega_ * r;
+  }
+
+  std::string describe_settings() const override {
+    return fmt::format("omega {:g}, model {}", omega_, model_type_);
+  }
+
+ private:
+  double omega_;
+  std::string model_type_;
+  std::unique_ptr<Model> model_;
+};
+
+}  // namespace
+
+COCOPP_REGISTER(CoupledSolverRegistry, "iqni", Iqni)
+
+}  // namespace cocopp

@@ -1,0 +1,32 @@
+#pragma once
+// Secant models: approximate the (inverse) Jacobian of the coupled problem from the residual
+// and output differences of past coupling iterations. Used by the quasi-Newton coupled solvers.
+#include <Eigen/Core>
+
+#include "coupler/case/registry.hpp"
+
+namespace cocopp {
+
+class Model {
+ public:
+  static constexpr const char* kind = "model";
+  virtual ~Model() = default;
+
+  /// Called at the start of every time step.
+  virtual void initialize_step() = 0;
+  /// Record one coupling iteration's residual r and solver output x~ (differences with the
+  /// previous iteration of the same step become the secant information).
+  virtual void add(const Eigen::VectorXd& r, const Eigen::VectorXd& xt) = 0;
+  /// Whether the model holds any secant information.
+  virtual bool is_ready() const = 0;
+  /// Approximate dx~ for a residual change dr (from the least-squares fit W c, V c ~ dr).
+  virtual Eigen::VectorXd predict(const Eigen::VectorXd& dr) = 0;
+  /// Called when the time step converged: keep this step's information for reuse.
+  virtual void finalize_step() = 0;
+  /// Number of secant columns currently in use (for reports and tests).
+  virtual int columns() const = 0;
+};
+
+using ModelRegistry = Registry<Model>;
+
+}  // namespace cocopp

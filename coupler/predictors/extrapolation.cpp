@@ -1,0 +1,69 @@
+// Polynomial extrapolation predictors: constant, linear, legacy, quadratic, cubic.
+// Each is a weighted sum of the newest converged values; with too little history they fall
+// back to the highest order the history allows.
+#include <vector>
+
+#include "coupler/predictors/predictor.hpp"
+
+namespace cocopp {
+namespace {
+
+using Weights = std::vector<double>;  // weight of x^n, x^(n-1), ...
+
+class Extrapolation : public Predictor {
+ public:
+  Extrapolation(const Settings&, Weights weights) : weights_(std::move(weights)) {}
+
+  void initialize(const Eigen::VectorXd& x0) override { history_ = {x0}; }
+
+  Eigen::VectorXd predict() const override {
+    const Weights& w = weights_.size() <= history_.size() ? weights_ : fallback();
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(history_.front().size());
+    for (std::size_t i = 0; i < w.size(); ++i) x += w[i] * history_[i];
+    return x;
+  }
+
+  void update(const Eigen::VectorXd& x) override {
+    history_.push_front(x);
+    if (history_.size() > weights_.size()) history_.pop_back();
+  }
+
+  const std::deque<Eigen::VectorXd>& history() const override { return history_; }
+
+ private:
+  /// The extrapolation of the highest order the current history supports.
+  const Weights& fallback() const {
+    static const std::vector<Weights> by_points = {
+        {1.0}, {2.0, -1.0}, {3.0, -3.0, 1.0}, {4.0, -6.0, 4.0, -1.0}};
+    return by_points[history_.size() - 1];
+  }
+
+  Weights weights_;
+  std::deque<Eigen::VectorXd> history_;
+};
+
+struct Constant : Extrapolation {
+  explicit Constant(const Settings& s) : Extrapolation(s, {1.0}) {}
+};
+struct Linear : Extrapolation {
+  explicit Linear(const Settings& s) : Extrapolation(s, {2.0, -1.0}) {}
+};
+struct Legacy : Extrapolation {
+  explicit Legacy(const Settings& s) : Extrapolation(s, {2.5, -2.0, 0.5}) {}
+};
+struct Quadratic : Extrapolation {
+  explicit Quadratic(const Settings& s) : Extrapolation(s, {3.0, -3.0, 1.0}) {}
+};
+struct Cubic : Extrapolation {
+  explicit Cubic(const Settings& s) : Extrapolation(s, {4.0, -6.0, 4.0, -1.0}) {}
+};
+
+}  // namespace
+
+COCOPP_REGISTER(PredictorRegistry, "constant", Constant)
+COCOPP_REGISTER(PredictorRegistry, "linear", Linear)
+COCOPP_REGISTER(PredictorRegistry, "legacy", Legacy)
+COCOPP_REGISTER(PredictorRegistry, "quadratic", Quadratic)
+COCOPP_REGISTER(PredictorRegistry, "cubic", Cubic)
+
+}  // namespace cocopp

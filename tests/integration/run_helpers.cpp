@@ -1,0 +1,87 @@
+#include "run_helpers.hpp"
+
+#include <hdf5.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <sys/wait.h>
+
+namespace cocopp::testing {
+
+namespace fs = std::filesystem;
+
+namespace {
+fs::path env_path(const char* name) {
+  const char* value = std::getenv(name);
+  if (!value) throw std::runtime_error(std::string(name) + " is not set (run through ctest)");
+  return value;
+}
+}  // namespace
+
+CommandResult run_command(const std::string& command) {
+  CommandResult result;
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) throw std::runtime_error("cannot run " + command);
+  std::array<char, 4096> buffer{};
+  std::size_t n;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+CommandResult run_cocopp(const std::string& arguments) {
+  return run_command((env_path("COCOPP_BIN_DIR") / "cocopp").string() + " " + arguments);
+}
+
+fs::path copy_example(const std::string& example, const std::string& tag) {
+  const fs::path source = env_path("COCOPP_SOURCE_DIR") / "examples" / example;
+  const fs::path target = fs::temp_directory_path() /
+                          ("cocopp_test_" + tag + "_" + std::to_string(::getpid()));
+  fs::remove_all(target);
+  fs::create_directories(target);
+  fs::copy(source, target, fs::copy_options::recursive);
+  fs::remove_all(target / "results");
+  return target;
+}
+
+nlohmann::json read_json(const fs::path& file) {
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error("cannot read " + file.string());
+  return nlohmann::json::parse(in);
+}
+
+std::vector<double> read_dataset(const fs::path& file, const std::string& name) {
+  const hid_t h5 = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (h5 < 0) throw std::runtime_error("cannot open " + file.string());
+  const hid_t dataset = H5Dopen2(h5, name.c_str(), H5P_DEFAULT);
+  if (dataset < 0) {
+    H5Fclose(h5);
+    throw std::runtime_error("no dataset " + name + " in " + file.string());
+  }
+  const hid_t space = H5Dget_space(dataset);
+  std::vector<double> values(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
+  if (!values.empty())
+    H5Dread(dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
+  H5Sclose(space);
+  H5Dclose(dataset);
+  H5Fclose(h5);
+  return values;
+}
+
+void write_text(const fs::path& file, const std::string& text) {
+  std::ofstream(file) << text;
+}
+
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace cocopp::testing

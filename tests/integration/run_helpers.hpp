@@ -1,0 +1,27 @@
+#pragma once
+// Helpers for end-to-end tests: run the cocopp executable on a copy of an example.
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace cocopp::testing {
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string output;  ///< stdout and stderr together
+};
+
+/// Run `command` through the shell, capturing its output.
+CommandResult run_command(const std::string& command);
+/// `cocopp <arguments>` with the built executable.
+CommandResult run_cocopp(const std::string& arguments);
+/// A fresh copy of examples/<example> in a temporary directory.
+std::filesystem::path copy_example(const std::string& example, const std::string& tag);
+nlohmann::json read_json(const std::filesystem::path& file);
+/// All values of a dataset of an HDF5 file, flattened.
+std::vector<double> read_dataset(const std::filesystem::path& file, const std::string& name);
+void write_text(const std::filesystem::path& file, const std::string& text);
+std::string read_text(const std::filesystem::path& file);
+
+}  // namespace cocopp::testing

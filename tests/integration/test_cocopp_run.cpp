@@ -1,0 +1,165 @@
+// `cocopp run` / `cocopp check` end to end, as a user runs them.
+#include <gtest/gtest.h>
+
+#include <regex>
+
+#include "run_helpers.hpp"
+
+using namespace cocopp::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Replace the first occurrence of `from` in a file.
+void edit(const fs::path& file, const std::string& from, const std::string& to) {
+  std::string text = read_text(file);
+  const auto at = text.find(from);
+  ASSERT_NE(at, std::string::npos) << from;
+  text.replace(at, from.size(), to);
+  write_text(file, text);
+}
+
+}  // namespace
+
+TEST(CocoppRun, FlowStructureTubeConvergesWithIqnIls) {
+  const fs::path dir = copy_example("tube/flow_structure", "fs_iqni");
+  const CommandResult run = run_cocopp("run " + (dir / "case.yaml").string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  // Header, one progress line per step, summary.
+  EXPECT_NE(run.output.find("coupled solver : iqni (omega 0.05, model ls)"), std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find("step 100 / 100"), std::string::npos);
+  EXPECT_NE(run.output.find("completed after 100 time steps"), std::string::npos);
+  EXPECT_NE(run.output.find("per coupling iteration"), std::string::npos);
+
+  const auto summary = read_json(dir / "results" / "case.summary.json");
+  EXPECT_TRUE(summary["completed"].get<bool>());
+  EXPECT_EQ(summary["steps_completed"].get<int>(), 100);
+  const double average = summary["average_iterations"].get<double>();
+  // With reuse of 10 steps IQN-ILS needs a few iterations per step (8 unstable modes).
+  EXPECT_GT(average, 2.0);
+  EXPECT_LT(average, 10.0);
+  const auto iterations = read_dataset(dir / "results" / "case.h5", "steps/iterations");
+  ASSERT_EQ(iterations.size(), 100u);
+  const auto converged = read_dataset(dir / "results" / "case.h5", "steps/converged");
+  for (double c : converged) EXPECT_EQ(c, 1.0);
+  fs::remove_all(dir);
+}
+
+TEST(CocoppRun, FlowRingmodelTubeConverges) {
+  const fs::path dir = copy_example("tube/flow_ringmodel", "fr_iqni");
+  const CommandResult run = run_cocopp("run --quiet " + (dir / "case.yaml").string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(run.output.find("step 1 /"), std::string::npos) << "--quiet prints no steps";
+  const auto summary = read_json(dir / "results" / "case.summary.json");
+  EXPECT_TRUE(summary["completed"].get<bool>());
+  EXPECT_EQ(summary["steps_completed"].get<int>(), 100);
+  fs::remove_all(dir);
+}
+
+TEST(CocoppRun, GaussSeidelIsReportedAsDivergingOnTheFlowStructureTube) {
+  const fs::path dir = copy_example("tube/flow_structure", "fs_gs");
+  write_text(dir / "case.yaml", R"(settings: {delta_t: 1.0e-4, number_of_timesteps: 100}
+coupled_solver:
+  type: gauss_seidel
+  predictor: {type: linear}
+  convergence_criterion:
+    type: or
+    criteria: [{type: relative_norm, tolerance: 1.0e-6}, {type: iteration_limit, maximum: 15}]
+solver_wrappers:
+  - {type: tube_flow, name: flow, working_directory: flow}
+  - {type: tube_structure, name: structure, working_directory: structure}
+)");
+  const CommandResult run = run_cocopp("run " + (dir / "case.yaml").string());
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_NE(run.output.find("diverged in time step 1"), std::string::npos) << run.output;
+  const auto summary = read_json(dir / "results" / "case.summary.json");
+  EXPECT_FALSE(summary["completed"].get<bool>());
+  EXPECT_EQ(summary["status"].get<std::string>(), "diverged");
+  // The results file stays readable: the layout is there, with no converged step.
+  EXPECT_TRUE(read_dataset(dir / "results" / "case.h5", "steps/iterations").empty());
+  fs::remove_all(dir);
+}
+
+TEST(CocoppRun, YamlAndJsonGiveIdenticalRuns) {
+  const fs::path yaml_dir = copy_example("tube/flow_structure", "fs_yaml");
+  const fs::path json_dir = copy_example("tube/flow_structure", "fs_json");
+  ASSERT_EQ(run_cocopp("run -q " + (yaml_dir / "case.yaml").string()).exit_code, 0);
+  ASSERT_EQ(run_cocopp("run -q " + (json_dir / "case.json").string()).exit_code, 0);
+  for (const char* dataset : {"steps/iterations", "residuals/norms", "x/wall/displacement",
+                              "y/wall/pressure"}) {
+    const auto from_yaml = read_dataset(yaml_dir / "results" / "case.h5", dataset);
+    const auto from_json = read_dataset(json_dir / "results" / "case.h5", dataset);
+    ASSERT_FALSE(from_yaml.empty()) << dataset;
+    EXPECT_EQ(from_yaml, from_json) << dataset;  // bit for bit
+  }
+  fs::remove_all(yaml_dir);
+  fs::remove_all(json_dir);
+}
+
+TEST(CocoppCheck, ValidCaseIsAccepted) {
+  const fs::path dir = copy_example("tube/flow_structure", "check_ok");
+  const CommandResult check = run_cocopp("check " + (dir / "case.yaml").string());
+  EXPECT_EQ(check.exit_code, 0) << check.output;
+  EXPECT_NE(check.output.find("OK"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir / "results")) << "check must not run anything";
+  fs::remove_all(dir);
+}
+
+TEST(CocoppCheck, TypoInAKeyNamesFileLineAndSuggestion) {
+  const fs::path dir = copy_example("tube/flow_structure", "check_typo");
+  edit(dir / "case.yaml", "  omega: 0.05", "  omgea: 0.05");
+  const CommandResult check = run_cocopp("check " + (dir / "case.yaml").string());
+  EXPECT_EQ(check.exit_code, 2);
+  EXPECT_TRUE(std::regex_search(check.output, std::regex("case\\.yaml:1[0-9]:3: unknown key "
+                                                         "'coupled_solver\\.omgea'; did you mean "
+                                                         "'omega'\\?")))
+      << check.output;
+  fs::remove_all(dir);
+}
+
+TEST(CocoppCheck, UnknownTypeWrongTypeAndRange) {
+  const fs::path dir = copy_example("tube/flow_structure", "check_types");
+  const fs::path file = dir / "case.yaml";
+  const std::string original = read_text(file);
+
+  edit(file, "type: linear", "type: lineair");
+  auto check = run_cocopp("check " + file.string());
+  EXPECT_EQ(check.exit_code, 2);
+  EXPECT_NE(check.output.find("unknown predictor 'lineair'; did you mean 'linear'?"),
+            std::string::npos)
+      << check.output;
+
+  write_text(file, original);
+  edit(file, "number_of_timesteps: 100", "number_of_timesteps: many");
+  check = run_cocopp("check " + file.string());
+  EXPECT_NE(check.output.find("'settings.number_of_timesteps': expected an integer, got 'many'"),
+            std::string::npos)
+      << check.output;
+
+  write_text(file, original);
+  edit(file, "delta_t: 1.0e-4", "delta_t: -1.0e-4");
+  check = run_cocopp("check " + file.string());
+  EXPECT_NE(check.output.find("case.yaml:6:"), std::string::npos) << check.output;
+  EXPECT_NE(check.output.find("'settings.delta_t': must be >="), std::string::npos)
+      << check.output;
+
+  write_text(file, original);
+  edit(file, "    working_directory: structure\n", "");
+  check = run_cocopp("check " + file.string());
+  EXPECT_NE(check.output.find("missing required key 'solver_wrappers[1].working_directory'"),
+            std::string::npos)
+      << check.output;
+  fs::remove_all(dir);
+}
+
+TEST(CocoppCli, HelpDocumentsTheCommands) {
+  for (const char* arguments : {"--help", "run --help", "check --help"}) {
+    const CommandResult help = run_cocopp(arguments);
+    EXPECT_EQ(help.exit_code, 0) << arguments;
+    EXPECT_NE(help.output.find("case"), std::string::npos) << help.output;
+  }
+  const CommandResult components = run_cocopp("components");
+  EXPECT_NE(components.output.find("gauss_seidel"), std::string::npos) << components.output;
+  EXPECT_NE(components.output.find("tube_flow"), std::string::npos) << components.output;
+}

@@ -1,0 +1,67 @@
+#pragma once
+// In-process solver wrappers for testing coupled solvers: an affine "flow" y = A x + b and an
+// affine "structure" x = B y, on one model part of n points. The coupled problem
+// x = B (A x + b) has the exact solution x* = (I - B A)^-1 B b.
+#include <Eigen/Dense>
+#include <functional>
+#include <limits>
+
+#include "solver_wrappers/solver_wrapper.hpp"
+
+namespace cocopp::testing {
+
+inline std::shared_ptr<const ModelPart> line_model_part(int n) {
+  auto part = std::make_shared<ModelPart>();
+  part->name = "wall";
+  part->coordinates = Coordinates::Zero(n, 3);
+  for (int i = 0; i < n; ++i) {
+    part->ids.push_back(i);
+    part->coordinates(i, 2) = i;
+  }
+  return part;
+}
+
+/// Maps `input_variable` to `output_variable` affinely on the first component.
+class AffineSolver : public SolverWrapper {
+ public:
+  AffineSolver(std::string name, std::shared_ptr<const ModelPart> part, std::string input,
+               std::string output, Eigen::MatrixXd matrix, Eigen::VectorXd offset)
+      : name_(std::move(name)),
+        input_({{part, {std::move(input)}}}),
+        output_({{part, {std::move(output)}}}),
+        matrix_(std::move(matrix)),
+        offset_(std::move(offset)) {}
+
+  const std::string& name() const override { return name_; }
+  void initialize() override {}
+  const Interface& input_interface() const override { return input_; }
+  const Interface& output_interface() const override { return output_; }
+  void initialize_step(int step, double) override { step_ = step; }
+  const Interface& solve(const Interface& input) override {
+    ++calls;
+    const auto& in_block = input.blocks().front();
+    const auto in = input.values(in_block.model_part, in_block.variable);
+    const Eigen::VectorXd result = matrix_ * Eigen::VectorXd(in.col(in.cols() > 1 ? 1 : 0)) + offset_;
+    const auto& out_block = output_.blocks().front();
+    auto out = output_.values(out_block.model_part, out_block.variable);
+    out.setZero();
+    out.col(out.cols() > 1 ? 1 : 0) = result;
+    if (poison_at_call == calls) out(0, 0) = std::numeric_limits<double>::quiet_NaN();
+    return output_;
+  }
+  void finalize_step() override {}
+  void output_step() override {}
+  void finalize() override {}
+
+  int calls = 0;
+  int poison_at_call = -1;  ///< return NaN at this call
+
+ private:
+  std::string name_;
+  Interface input_, output_;
+  Eigen::MatrixXd matrix_;
+  Eigen::VectorXd offset_;
+  int step_ = 0;
+};
+
+}  // namespace cocopp::testing
