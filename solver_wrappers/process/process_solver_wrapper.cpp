@@ -1,0 +1,353 @@
+#include "solver_wrappers/process/process_solver_wrapper.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+
+#include "coupler/case/suggest.hpp"
+#include "solver_wrappers/process/child_process.hpp"
+#include "solver_wrappers/solver_error.hpp"
+
+namespace cocopp {
+
+COCOPP_REGISTER(SolverWrapperRegistry, "process", ProcessSolverWrapper)
+
+namespace {
+
+using protocol::Frame;
+using protocol::MessageType;
+
+constexpr std::size_t kLogTailLines = 20;
+/// After SIGTERM, before SIGKILL.
+constexpr double kStopGraceSeconds = 2.0;
+/// STOP gets at most this long (or `timeout`, if shorter): finalize() must not hang a run.
+constexpr double kStopTimeoutSeconds = 30.0;
+/// A solver exits by itself after answering STOP, or after sending ERROR; it gets this long
+/// before it is stopped (so that its exit status and last output are known).
+constexpr double kExitAfterStopSeconds = 10.0;
+constexpr double kExitAfterErrorSeconds = 2.0;
+
+/// Thrown by the alive check when the solver process has ended.
+struct ChildExited : std::exception {};
+/// The solver answered with ERROR.
+struct ReportedError : std::exception {
+  explicit ReportedError(std::string text) : text(std::move(text)) {}
+  std::string text;
+};
+
+double positive_seconds(const Settings& settings, const std::string& key, double default_value) {
+  const double value = settings.get<double>(key, default_value);
+  if (!(value > 0))
+    settings.fail(key, fmt::format("must be a number of seconds > 0, got {}", value));
+  return value;
+}
+
+auto decode_ok = [](const Frame& frame) { protocol::decode_empty(frame, MessageType::kOk); };
+
+}  // namespace
+
+void ProcessSolverWrapper::ensure_running() const {
+  if (state_ == State::kRunning) return;
+  throw SolverError(name_,
+                    "solver '" + name_ + "' is not running (" +
+                        (state_ == State::kNotStarted ? "initialize() was not called)"
+                                                      : "it was stopped, or failed earlier)"));
+}
+
+protocol::AliveCheck ProcessSolverWrapper::alive_check() {
+  return [this] {
+    if (!child_->running()) throw ChildExited();
+  };
+}
+
+// The templates come first: their return types are deduced, so they must precede their uses.
+template <class Exchange>
+auto ProcessSolverWrapper::guarded(const std::string& request_name, double timeout_seconds,
+                                   Exchange&& exchange) {
+  ensure_running();
+  try {
+    return exchange();
+  } catch (const ReportedError& error) {
+    child_->wait_for_exit(kExitAfterErrorSeconds);
+    fail(fmt::format("solver '{}' reported an error: {}\n(during {} {}; log: {})", name_,
+                     error.text, request_name, at_position(request_name), log_file_.string()));
+  } catch (const ChildExited&) {
+    fail_child_exited(request_name);
+  } catch (const protocol::TransportTimeout&) {
+    const std::string what =
+        request_name == "startup" ? "did not connect" : "did not answer " + request_name;
+    const std::string where = position(request_name);
+    fail_with_log(fmt::format("solver '{}' {} within {} ({}); its log {} ends with:", name_, what,
+                              protocol::seconds_text(timeout_seconds),
+                              where.empty() ? "before the first step" : where, log_file_.string()));
+  } catch (const protocol::PeerClosed&) {
+    // A crashing solver closes the pipe before the alive check sees that it has died.
+    child_->wait_for_exit(kExitAfterErrorSeconds);
+    if (!child_->running()) fail_child_exited(request_name);
+    fail_with_log(fmt::format(
+        "solver '{}' (pid {}) closed the pipe during {} {}; its log {} ends with:", name_,
+        child_->pid(), request_name, at_position(request_name), log_file_.string()));
+  } catch (const protocol::ProtocolError& e) {
+    fail_with_log(
+        fmt::format("solver '{}' broke the protocol during {} {}: {}; its log {} ends with:", name_,
+                    request_name, at_position(request_name), e.what(), log_file_.string()));
+  } catch (const protocol::TransportError& e) {
+    fail(fmt::format("solver '{}': communication failed during {} {}: {}", name_, request_name,
+                     at_position(request_name), e.what()));
+  }
+}
+
+template <class Decode>
+auto ProcessSolverWrapper::call(const std::string& request_name, const Frame* request,
+                                MessageType expected_reply, double timeout_seconds,
+                                Decode&& decode) {
+  return guarded(request_name, timeout_seconds, [&] {
+    if (request != nullptr) channel_->send(*request, timeout_seconds, alive_check());
+    const Frame reply = channel_->receive(timeout_seconds, alive_check());
+    const MessageType type = protocol::message_type(reply);
+    if (type == MessageType::kError) throw ReportedError(protocol::decode_error(reply));
+    if (type != expected_reply)
+      throw protocol::ProtocolError("answered " + request_name + " with " +
+                                    protocol::message_name(type) + " instead of " +
+                                    protocol::message_name(expected_reply));
+    return decode(reply);
+  });
+}
+
+ProcessSolverWrapper::ProcessSolverWrapper(const Settings& settings, const RunSettings& run,
+                                           std::optional<DefaultCommand> default_command)
+    : run_(run) {
+  name_ = settings.get<std::string>("name", settings.required<std::string>("type"));
+  if (name_.empty()) settings.fail("name", "must not be empty");
+  const std::filesystem::path directory = settings.required<std::string>("working_directory");
+  working_directory_ = std::filesystem::absolute(run.case_directory / directory).lexically_normal();
+  working_directory_where_ = settings.where("working_directory");
+  read_command(settings, default_command);
+  transport_kind_ =
+      protocol::parse_transport_kind(settings.get_choice("transport", "pipe", {"pipe", "file"}));
+  timeout_ = positive_seconds(settings, "timeout", 600.0);
+  startup_timeout_ = positive_seconds(settings, "startup_timeout", 60.0);
+  log_file_ = working_directory_ / settings.get<std::string>("log_file", name_ + ".log");
+}
+
+void ProcessSolverWrapper::read_command(const Settings& settings,
+                                        const std::optional<DefaultCommand>& default_command) {
+  if (default_command && !settings.has("command")) {
+    input_file_ = settings.get<std::string>("input_file", default_command->input_file);
+    input_file_where_ = settings.where("input_file");
+    command_ = {default_command->executable.string(), input_file_};
+    command_where_ = settings.where();
+    return;
+  }
+  if (default_command && settings.has("input_file"))
+    settings.fail("input_file", "give either 'command' or 'input_file', not both");
+  command_ = settings.required<std::vector<std::string>>("command");
+  if (command_.empty() || command_[0].empty())
+    settings.fail("command",
+                  "must start with the executable to run, e.g. [./my_solver, input.txt]");
+  command_where_ = settings.where("command");
+}
+
+ProcessSolverWrapper::~ProcessSolverWrapper() {
+  try {
+    finalize();
+  } catch (...) {
+    // Unwinding from another error, most likely: that one is the one to report.
+  }
+}
+
+std::string ProcessSolverWrapper::describe() const {
+  return fmt::format("{}: {} (in {}; log {}; {} transport)", name_, join(command_, " "),
+                     working_directory_.string(), log_file_.string(),
+                     protocol::transport_name(transport_kind_));
+}
+
+void ProcessSolverWrapper::check() const {
+  const std::string solver = "solver '" + name_ + "': ";
+  if (!std::filesystem::is_directory(working_directory_))
+    throw CaseError(working_directory_where_ + ": " + solver + "working directory " +
+                    working_directory_.string() + " does not exist");
+  try {
+    find_executable(command_[0], working_directory_);
+  } catch (const std::runtime_error& e) {
+    throw CaseError(command_where_ + ": " + solver + e.what());
+  }
+  if (!input_file_.empty() && !std::filesystem::exists(working_directory_ / input_file_))
+    throw CaseError(input_file_where_ + ": " + solver + "input file " +
+                    (working_directory_ / input_file_).string() + " does not exist");
+}
+
+int ProcessSolverWrapper::child_pid() const {
+  return child_ ? child_->pid() : -1;
+}
+
+void ProcessSolverWrapper::initialize() {
+  if (state_ != State::kNotStarted)
+    throw std::logic_error("solver '" + name_ + "' is initialized twice");
+  check();
+  launch();
+  wait_for_hello();
+  const Frame request = protocol::encode_initialize({run_.delta_t, run_.timestep_start});
+  build_interfaces(
+      call("initialize", &request, MessageType::kInterface, timeout_, protocol::decode_interface));
+}
+
+void ProcessSolverWrapper::launch() {
+  try {
+    std::filesystem::create_directories(log_file_.parent_path());
+    channel_ = protocol::create_coupler_channel(transport_kind_, working_directory_);
+    ChildOptions options;
+    options.command = command_;
+    options.working_directory = working_directory_;
+    options.environment = {
+        {protocol::kTransportVariable, protocol::transport_name(transport_kind_)},
+        {protocol::kChannelVariable, working_directory_.string()}};
+    options.log_file = log_file_;
+    options.truncate_log = true;
+    child_ = std::make_unique<ChildProcess>(options);
+  } catch (const std::exception& e) {
+    release();
+    throw SolverError(name_, "cannot start solver '" + name_ + "': " + e.what());
+  }
+  state_ = State::kRunning;
+}
+
+void ProcessSolverWrapper::wait_for_hello() {
+  // One deadline for both stages of the startup.
+  const auto start = std::chrono::steady_clock::now();
+  guarded("startup", startup_timeout_, [&] { channel_->connect(startup_timeout_, alive_check()); });
+  const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+  const auto hello =
+      call("startup", nullptr, MessageType::kHello,
+           std::max(startup_timeout_ - elapsed.count(), 0.0), protocol::decode_hello);
+  solver_pid_ = hello.pid;
+  if (hello.version != protocol::kProtocolVersion)
+    fail(
+        fmt::format("solver '{}' speaks protocol version {}, this cocopp speaks version {}: "
+                    "rebuild the solver with this version's SDK",
+                    name_, hello.version, protocol::kProtocolVersion));
+}
+
+void ProcessSolverWrapper::build_interfaces(const sdk::InterfaceDescription& description) {
+  std::vector<Interface::Part> input_parts;
+  std::vector<Interface::Part> output_parts;
+  for (const auto& part : description.model_parts) {
+    const auto points = static_cast<Eigen::Index>(part.ids.size());
+    if (part.coordinates.size() != 3 * part.ids.size())
+      fail(
+          fmt::format("solver '{}' sent {} coordinates for the {} points of model part '{}' "
+                      "(3 per point expected)",
+                      name_, part.coordinates.size(), points, part.name));
+    // One ModelPart shared by the input and the output interface.
+    auto model_part = std::make_shared<ModelPart>();
+    model_part->name = part.name;
+    model_part->ids = part.ids;
+    model_part->coordinates = Eigen::Map<const Coordinates>(part.coordinates.data(), points, 3);
+    if (!part.input_variables.empty()) input_parts.push_back({model_part, part.input_variables});
+    if (!part.output_variables.empty()) output_parts.push_back({model_part, part.output_variables});
+  }
+  try {
+    input_interface_ = Interface(input_parts);
+    output_interface_ = Interface(output_parts);
+  } catch (const std::invalid_argument& e) {
+    fail(fmt::format("solver '{}' described an invalid interface: {}", name_, e.what()));
+  }
+  const auto& initial = description.initial_output;
+  if (initial.empty()) return;  // zeros
+  if (static_cast<Eigen::Index>(initial.size()) != output_interface_.size())
+    fail(
+        fmt::format("solver '{}' sent {} initial output values for an output interface of {} "
+                    "({})",
+                    name_, initial.size(), output_interface_.size(), output_interface_.describe()));
+  output_interface_.set_data(Eigen::Map<const Eigen::VectorXd>(initial.data(), initial.size()));
+}
+
+void ProcessSolverWrapper::initialize_step(int step, double time) {
+  step_ = step;
+  step_started_ = true;
+  iteration_ = 0;
+  const Frame request = protocol::encode_initialize_step({step, time});
+  call("initialize_step", &request, MessageType::kOk, timeout_, decode_ok);
+}
+
+const Interface& ProcessSolverWrapper::solve(const Interface& input) {
+  if (!input.same_layout(input_interface_))
+    throw std::invalid_argument(
+        fmt::format("solver '{}': solve() was given {} but the solver's input interface is {}",
+                    name_, input.describe(), input_interface_.describe()));
+  ++iteration_;
+  const Frame request = protocol::encode_solve(input.data().data(), input.size());
+  const std::vector<double> output =
+      call("solve", &request, MessageType::kData, timeout_, protocol::decode_data);
+  if (static_cast<Eigen::Index>(output.size()) != output_interface_.size())
+    fail(
+        fmt::format("solver '{}' returned {} values from solve {}; its output interface has {} "
+                    "({})",
+                    name_, output.size(), at_position("solve"), output_interface_.size(),
+                    output_interface_.describe()));
+  output_interface_.set_data(Eigen::Map<const Eigen::VectorXd>(output.data(), output.size()));
+  return output_interface_;
+}
+
+void ProcessSolverWrapper::finalize_step() {
+  const Frame request = protocol::encode_empty(MessageType::kFinalizeStep);
+  call("finalize_step", &request, MessageType::kOk, timeout_, decode_ok);
+}
+
+void ProcessSolverWrapper::output_step() {
+  const Frame request = protocol::encode_empty(MessageType::kOutputStep);
+  call("output_step", &request, MessageType::kOk, timeout_, decode_ok);
+}
+
+void ProcessSolverWrapper::finalize() {
+  if (state_ != State::kRunning) {  // never started, already finalized, or failed
+    release();
+    return;
+  }
+  const Frame request = protocol::encode_empty(MessageType::kStop);
+  call("stop", &request, MessageType::kOk, std::min(timeout_, kStopTimeoutSeconds), decode_ok);
+  child_->wait_for_exit(kExitAfterStopSeconds);
+  release();
+}
+
+void ProcessSolverWrapper::fail(const std::string& message) {
+  release();
+  throw SolverError(name_, message);
+}
+
+void ProcessSolverWrapper::fail_with_log(const std::string& message) {
+  release();  // first: the log is complete once the process has ended
+  throw SolverError(name_, message + "\n" + log_tail());
+}
+
+void ProcessSolverWrapper::fail_child_exited(const std::string& request_name) {
+  fail_with_log(fmt::format("solver '{}' (pid {}) {} during {} {}; last lines of {}:", name_,
+                            child_->pid(), child_->describe_exit(), request_name,
+                            at_position(request_name), log_file_.string()));
+}
+
+void ProcessSolverWrapper::release() noexcept {
+  state_ = State::kStopped;
+  if (child_) child_->stop(kStopGraceSeconds);
+  channel_.reset();  // closes the channel and removes its FIFOs or message files
+}
+
+std::string ProcessSolverWrapper::position(const std::string& request_name) const {
+  if (!step_started_) return "";
+  std::string text = "step " + std::to_string(step_);
+  if (request_name == "solve") text += ", iteration " + std::to_string(iteration_);
+  return text;
+}
+
+std::string ProcessSolverWrapper::at_position(const std::string& request_name) const {
+  const std::string where = position(request_name);
+  return where.empty() ? "before the first step" : "at " + where;
+}
+
+std::string ProcessSolverWrapper::log_tail() const {
+  const std::string tail = read_last_lines(log_file_, kLogTailLines);
+  return tail.empty() ? "(the log is empty)" : tail;
+}
+
+}  // namespace cocopp

@@ -1,0 +1,128 @@
+#pragma once
+// ProcessSolverWrapper: a solver running as its own executable, driven over the cocopp solver
+// protocol (docs/protocol.md). Case-file type `process`; the built-in tube solvers
+// (`tube_flow`, `tube_structure`, `tube_ringmodel`) are the same class with a default command.
+//
+// Keys (docs/solver-wrappers.md): name, working_directory, command, transport, timeout,
+// startup_timeout, log_file; and input_file for the built-in solvers. They are all read in
+// the constructor, so that `cocopp check` validates them without starting anything.
+//
+// Every failure of the solver (crash, hang, error message, broken protocol) stops its process
+// group, removes the channel and throws a SolverError that names the solver and quotes the end
+// of its log. finalize() is safe to call at any time, more than once; the destructor calls it.
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "solver_wrappers/protocol/frame.hpp"
+#include "solver_wrappers/protocol/messages.hpp"
+#include "solver_wrappers/protocol/transport.hpp"
+#include "solver_wrappers/solver_wrapper.hpp"
+
+namespace cocopp {
+
+class ChildProcess;
+
+/// The command of a built-in solver: used when the case file gives no `command`.
+struct DefaultCommand {
+  std::filesystem::path executable;
+  std::string input_file;  ///< default of the `input_file` key, relative to working_directory
+};
+
+class ProcessSolverWrapper : public SolverWrapper {
+ public:
+  ProcessSolverWrapper(const Settings& settings, const RunSettings& run,
+                       std::optional<DefaultCommand> default_command = std::nullopt);
+  ~ProcessSolverWrapper() override;
+  ProcessSolverWrapper(const ProcessSolverWrapper&) = delete;
+  ProcessSolverWrapper& operator=(const ProcessSolverWrapper&) = delete;
+
+  const std::string& name() const override { return name_; }
+  std::string describe() const override;
+  void check() const override;
+
+  void initialize() override;
+  const Interface& input_interface() const override { return input_interface_; }
+  const Interface& output_interface() const override { return output_interface_; }
+  void initialize_step(int step, double time) override;
+  const Interface& solve(const Interface& input) override;
+  void finalize_step() override;
+  void output_step() override;
+  void finalize() override;
+
+  const std::vector<std::string>& command() const { return command_; }
+  const std::filesystem::path& working_directory() const { return working_directory_; }
+  const std::filesystem::path& log_file() const { return log_file_; }
+  protocol::TransportKind transport() const { return transport_kind_; }
+  /// The launched process (-1 before initialize()).
+  int child_pid() const;
+  /// The process talking to the coupler, from its HELLO (differs from child_pid under mpirun).
+  std::int64_t solver_pid() const { return solver_pid_; }
+
+ private:
+  enum class State { kNotStarted, kRunning, kStopped };
+
+  void read_command(const Settings& settings, const std::optional<DefaultCommand>& default_command);
+  void launch();
+  void wait_for_hello();
+  void ensure_running() const;
+  void build_interfaces(const sdk::InterfaceDescription& description);
+
+  /// Send `request` (or, if null, only wait), check that the reply is `expected_reply` and
+  /// return decode(reply). Every failure ends in fail().
+  template <class Decode>
+  auto call(const std::string& request_name, const protocol::Frame* request,
+            protocol::MessageType expected_reply, double timeout_seconds, Decode&& decode);
+  /// Run one exchange with the solver, turning each way it can fail into a SolverError.
+  template <class Exchange>
+  auto guarded(const std::string& request_name, double timeout_seconds, Exchange&& exchange);
+  protocol::AliveCheck alive_check();
+
+  /// Stop the solver, remove the channel, throw SolverError(message).
+  [[noreturn]] void fail(const std::string& message);
+  [[noreturn]] void fail_with_log(const std::string& message);
+  [[noreturn]] void fail_child_exited(const std::string& request_name);
+  /// Stop the process group and remove the channel. Never throws.
+  void release() noexcept;
+
+  /// "step 3, iteration 2" (iteration for solve only); "" before the first step.
+  std::string position(const std::string& request_name) const;
+  /// "at step 3" / "before the first step".
+  std::string at_position(const std::string& request_name) const;
+  std::string log_tail() const;
+
+  // From the case file.
+  std::string name_;
+  std::filesystem::path working_directory_;
+  std::vector<std::string> command_;
+  std::string input_file_;  ///< known for built-in solvers only (checked by check())
+  protocol::TransportKind transport_kind_ = protocol::TransportKind::kPipe;
+  double timeout_ = 600.0;
+  double startup_timeout_ = 60.0;
+  std::filesystem::path log_file_;
+  // Where in the case file, for check() errors.
+  std::string working_directory_where_;
+  std::string command_where_;
+  std::string input_file_where_;
+  RunSettings run_;
+
+  // While running.
+  State state_ = State::kNotStarted;
+  std::unique_ptr<protocol::Transport> channel_;
+  std::unique_ptr<ChildProcess> child_;
+  std::int64_t solver_pid_ = -1;
+  int step_ = 0;
+  bool step_started_ = false;
+  int iteration_ = 0;
+  Interface input_interface_;
+  Interface output_interface_;
+};
+
+/// The directory of the built-in solver executables: $COCOPP_BIN_DIR if set, else the
+/// directory of the running executable.
+std::filesystem::path builtin_solver_directory();
+
+}  // namespace cocopp
