@@ -1,0 +1,56 @@
+#pragma once
+// TubeRingmodel: the tube wall as independent massless rings (docs/tube-solvers.md). The
+// cross-section follows from the local pressure alone (a tube law), so there is no state:
+// one coupling iteration maps the pressure (Pa) of the m cells to their radial displacement.
+#include <Eigen/Dense>
+#include <string>
+
+#include "solver_wrappers/tube/tube_input.hpp"
+
+namespace cocopp::tube {
+
+struct TubeRingmodelParameters {
+  TubeGeometry geometry;
+  double rho_f = 0.0;  ///< fluid density, kg/m^3 (the tube law is written in p / rho_f)
+  double e = 0.0;      ///< Young's modulus, Pa
+  double h = 0.0;      ///< wall thickness, m
+  double p_ref = 0.0;  ///< pressure at which the wall is undeformed, Pa
+  OutputSettings output;
+
+  /// Moens-Korteweg wave speed squared, E h / (rho_f d).
+  double wave_speed_squared() const;
+
+  static TubeRingmodelParameters read(const InputSection& input);
+  static TubeRingmodelParameters load(const std::string& file);
+};
+
+class TubeRingmodel {
+ public:
+  /// Throws std::invalid_argument if p_ref leaves no positive c0^2 = cmk2 - p_ref / (2 rho_f).
+  explicit TubeRingmodel(TubeRingmodelParameters parameters, int timestep_start = 0);
+
+  void initialize_step() { ++step_; }
+  /// Pressures (Pa) -> radial displacements. Throws std::runtime_error("unphysical pressure
+  /// ...") where p / rho_f >= 2 c0^2 + p_ref / rho_f (the tube law has no finite area there).
+  Eigen::VectorXd solve(const Eigen::VectorXd& pressure);
+  void finalize_step() {}
+  void output_step(int step) const;
+
+  int step() const { return step_; }
+  int cells() const { return parameters_.geometry.cells; }
+  const TubeRingmodelParameters& parameters() const { return parameters_; }
+  Eigen::VectorXd cell_centres() const { return parameters_.geometry.cell_centres(); }
+  const Eigen::VectorXd& displacement() const { return displacement_; }
+
+  /// The tube law for one ring: pressure (Pa) -> radial displacement.
+  double displacement_at(double pressure) const;
+
+ private:
+  TubeRingmodelParameters parameters_;
+  int step_;
+  double c02_;  ///< c0^2 = cmk2 - p_ref / (2 rho_f)
+  Eigen::VectorXd pressure_;
+  Eigen::VectorXd displacement_;
+};
+
+}  // namespace cocopp::tube
