@@ -34,7 +34,7 @@ int main(int argc, char** argv) {
       "to loads, the second loads to displacement) and iterates every time step until they "
       "agree. Everything is set in one case file (YAML or JSON); see docs/case-file.md."};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "cocopp 0.1.0");
+  app.set_version_flag("--version", "cocopp " COCOPP_VERSION);
 
   std::string case_file;
   cocopp::RunOptions options;

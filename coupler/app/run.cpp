@@ -30,7 +30,7 @@ void on_interrupt(int signal) {
 }
 
 void print_header(const Case& c) {
-  fmt::print("cocopp 0.1.0: case {}\n", c.file.string());
+  fmt::print("cocopp {}: case {}\n", COCOPP_VERSION, c.file.string());
   fmt::print("  time steps     : {} .. {} of delta_t {:g} s (t = {:g} .. {:g} s)\n",
              c.run.timestep_start + 1, c.run.timestep_start + c.run.number_of_timesteps,
              c.run.delta_t, c.run.timestep_start * c.run.delta_t, c.end_time());

@@ -77,6 +77,7 @@ void RunSummary::add_step(const StepRecord& record) {
   if (!record.converged) unconverged_steps_.push_back(record.step);
   wall_time_ += record.wall_time;
   coupler_time_ += record.coupler_time;
+  iteration_coupler_time_ += record.coupler_time;
   for (std::size_t i = 0; i < solver_times_.size(); ++i) solver_times_[i] += record.solver_times[i];
 }
 
@@ -128,6 +129,10 @@ json RunSummary::to_json() const {
   out["solver_times"] = solver_times_json();
   out["coupler_time"] = coupler_time_;
   out["coupler_time_per_iteration"] = ratio(coupler_time_, static_cast<double>(total_iterations));
+  // The coupling algorithm's own cost inside the time steps (no start-up, no results I/O).
+  out["step_coupler_time"] = iteration_coupler_time_;
+  out["step_coupler_time_per_iteration"] =
+      ratio(iteration_coupler_time_, static_cast<double>(total_iterations));
   return out;
 }
 

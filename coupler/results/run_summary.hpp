@@ -47,6 +47,7 @@ class RunSummary {
   double wall_time_ = 0;
   std::vector<double> solver_times_;
   double coupler_time_ = 0;
+  double iteration_coupler_time_ = 0;  ///< sum of the steps' coupler_time
 };
 
 }  // namespace cocopp

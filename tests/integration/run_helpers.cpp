@@ -14,14 +14,6 @@ namespace cocopp::testing {
 
 namespace fs = std::filesystem;
 
-namespace {
-fs::path env_path(const char* name) {
-  const char* value = std::getenv(name);
-  if (!value) throw std::runtime_error(std::string(name) + " is not set (run through ctest)");
-  return value;
-}
-}  // namespace
-
 CommandResult run_command(const std::string& command) {
   CommandResult result;
   FILE* pipe = popen((command + " 2>&1").c_str(), "r");
@@ -35,11 +27,11 @@ CommandResult run_command(const std::string& command) {
 }
 
 CommandResult run_cocopp(const std::string& arguments) {
-  return run_command((env_path("COCOPP_BIN_DIR") / "cocopp").string() + " " + arguments);
+  return run_command((fs::path(COCOPP_TEST_BIN_DIR) / "cocopp").string() + " " + arguments);
 }
 
 fs::path copy_example(const std::string& example, const std::string& tag) {
-  const fs::path source = env_path("COCOPP_SOURCE_DIR") / "examples" / example;
+  const fs::path source = fs::path(COCOPP_TEST_SOURCE_DIR) / "examples" / example;
   const fs::path target = fs::temp_directory_path() /
                           ("cocopp_test_" + tag + "_" + std::to_string(::getpid()));
   fs::remove_all(target);

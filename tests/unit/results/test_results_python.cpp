@@ -11,10 +11,6 @@
 
 #include "tests/unit/results/results_fixture.hpp"
 
-#ifndef COCOPP_DEFAULT_SOURCE_DIR
-#define COCOPP_DEFAULT_SOURCE_DIR "."
-#endif
-
 namespace cocopp::test {
 namespace {
 
@@ -23,10 +19,7 @@ using nlohmann::json;
 constexpr const char* kPython = "/usr/bin/python3";
 constexpr int kSteps = 12;  // so that step 10 of the docs example exists
 
-std::filesystem::path source_dir() {
-  const char* dir = std::getenv("COCOPP_SOURCE_DIR");
-  return dir ? dir : COCOPP_DEFAULT_SOURCE_DIR;
-}
+std::filesystem::path source_dir() { return COCOPP_TEST_SOURCE_DIR; }
 
 std::string quoted(const std::filesystem::path& path) {
   std::string out = "'";

@@ -1,0 +1,68 @@
+#!/usr/bin/python3
+"""Benchmark: the flow-structure tube example (100 steps) as a whole process.
+
+Runs `cocopp run -q` on a fresh copy of examples/tube/flow_structure several times and reports
+the whole-process wall time (start-up of the coupler and both solver processes included) and,
+from the run summary, the coupler's own time per coupling iteration (time inside the time steps
+not spent waiting for a solver: the coupling algorithm, predictor, convergence checks and data
+copies; results I/O and start-up excluded) next to the total coupler time per iteration.
+
+    /usr/bin/python3 bench/tube_run.py [--build build] [--repeat 10] [--case case.yaml]
+"""
+import argparse
+import json
+import shutil
+import statistics
+import subprocess
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def run_once(cocopp, example, case):
+    with tempfile.TemporaryDirectory(prefix="cocopp_bench_") as tmp:
+        work = Path(tmp) / "case"
+        shutil.copytree(example, work, ignore=shutil.ignore_patterns("results", "*.log", "output"))
+        start = time.perf_counter()
+        subprocess.run([str(cocopp), "run", "-q", str(work / case)], check=True,
+                       stdout=subprocess.DEVNULL)
+        wall = time.perf_counter() - start
+        summary = json.loads((work / "results" / (Path(case).stem + ".summary.json")).read_text())
+        return wall, summary
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--build", default=str(ROOT / "build"), help="build directory")
+    parser.add_argument("--repeat", type=int, default=10, help="number of runs")
+    parser.add_argument("--example", default=str(ROOT / "examples/tube/flow_structure"))
+    parser.add_argument("--case", default="case.yaml", help="case file inside the example")
+    args = parser.parse_args()
+
+    cocopp = Path(args.build) / "bin" / "cocopp"
+    run_once(cocopp, args.example, args.case)  # warm the file cache
+    walls, step_coupler, coupler, iterations = [], [], [], None
+    for _ in range(args.repeat):
+        wall, summary = run_once(cocopp, args.example, args.case)
+        walls.append(wall)
+        step_coupler.append(summary["step_coupler_time_per_iteration"])
+        coupler.append(summary["coupler_time_per_iteration"])
+        iterations = sum(summary["iterations_per_step"])
+        solver_times = summary["solver_times"]
+
+    print(f"case: {args.example}/{args.case}, {args.repeat} runs, "
+          f"{iterations} coupling iterations per run")
+    print(f"whole process wall time    : median {statistics.median(walls) * 1e3:8.1f} ms  "
+          f"(min {min(walls) * 1e3:.1f}, max {max(walls) * 1e3:.1f})")
+    print(f"coupler time per iteration : median {statistics.median(step_coupler) * 1e6:8.1f} us  "
+          f"(inside the time steps)")
+    print(f"  incl. start-up and I/O   : median {statistics.median(coupler) * 1e6:8.1f} us")
+    print("solver time (last run)     : " +
+          ", ".join(f"{name} {t * 1e3:.1f} ms" for name, t in solver_times.items()))
+
+
+if __name__ == "__main__":
+    main()
