@@ -131,15 +131,18 @@ class Run {
     const int steps = writer_ ? writer_->steps_written() : 0;
     fmt::print("\n{} after {} time step{} in {:.3f} s\n", outcome.status, steps,
                steps == 1 ? "" : "s", wall);
+    auto line = [](const std::string& label, const std::string& text) {
+      fmt::print("  {:<18}: {}\n", label, text);
+    };
     for (std::size_t i = 0; i < 2; ++i)
-      fmt::print("  solver {:<12}: {:.3f} s\n", case_.solvers[i]->name(), solver_times[i]);
-    fmt::print("  coupler       : {:.3f} s ({:.1f} us per coupling iteration in the algorithm)\n",
-               coupler, iterations_ ? 1e6 * algorithm_time_ / iterations_ : 0.0);
+      line("solver " + case_.solvers[i]->name(), fmt::format("{:.3f} s", solver_times[i]));
+    line("coupler", fmt::format("{:.3f} s ({:.1f} us per coupling iteration inside the steps)",
+                                coupler, iterations_ ? 1e6 * algorithm_time_ / iterations_ : 0.0));
     if (steps > 0)
-      fmt::print("  iterations    : {:.2f} per time step on average ({} in all)\n",
-                 double(iterations_) / steps, iterations_);
-    if (writer_) fmt::print("  results       : {}\n", writer_->path().string());
-    fmt::print("  summary       : {}\n", results_path(".summary.json").string());
+      line("iterations", fmt::format("{:.2f} per time step on average ({} in all)",
+                                     double(iterations_) / steps, iterations_));
+    if (writer_) line("results", writer_->path().string());
+    line("summary", results_path(".summary.json").string());
     if (outcome.status != "completed") fmt::print(stderr, "\nerror: {}\n", outcome.message);
   }
 

@@ -167,46 +167,75 @@ template std::vector<std::string> Settings::get<std::vector<std::string>>(
     const std::string&, const std::vector<std::string>&) const;
 
 namespace {
-std::string range_text(double min, double max) {
+std::string format_number(double value) {
   std::ostringstream out;
   out.precision(12);
-  if (std::isinf(max))
-    out << "must be >= " << min;
-  else
-    out << "must be between " << min << " and " << max;
+  out << value;
   return out.str();
 }
 }  // namespace
 
-double Settings::get_in_range(const std::string& key, double default_value, double min,
-                              double max) const {
-  const double value = get<double>(key, default_value);
-  if (value < min || value > max)
-    fail(key, range_text(min, max) + ", got " + std::to_string(value));
-  return value;
+bool Range::contains(double value) const {
+  const bool above = min_exclusive ? value > min : value >= min;
+  const bool below = max_exclusive ? value < max : value <= max;
+  return above && below;
 }
 
-double Settings::required_in_range(const std::string& key, double min, double max) const {
-  const double value = required<double>(key);
-  if (value < min || value > max)
-    fail(key, range_text(min, max) + ", got " + std::to_string(value));
+std::string Range::describe() const {
+  const bool bounded_below = std::isfinite(min);
+  const bool bounded_above = std::isfinite(max);
+  if (bounded_below && bounded_above)
+    return std::string("in ") + (min_exclusive ? "(" : "[") + format_number(min) + ", " +
+           format_number(max) + (max_exclusive ? ")" : "]");
+  if (bounded_below) return (min_exclusive ? "> " : ">= ") + format_number(min);
+  if (bounded_above) return (max_exclusive ? "< " : "<= ") + format_number(max);
+  return "a finite number";
+}
+
+namespace {
+template <class T>
+T checked(const Settings& s, const std::string& key, T value, const Range& range) {
+  if (!range.contains(value))
+    s.fail(key, "must be " + range.describe() + ", got " + format_number(value));
   return value;
+}
+}  // namespace
+
+double Settings::required_in_range(const std::string& key, const Range& range) const {
+  return checked(*this, key, required<double>(key), range);
+}
+
+double Settings::get_in_range(const std::string& key, double default_value,
+                              const Range& range) const {
+  return checked(*this, key, get<double>(key, default_value), range);
+}
+
+int Settings::required_int_in_range(const std::string& key, int min, int max) const {
+  return checked(*this, key, required<int>(key), Range::closed(min, max));
 }
 
 int Settings::get_int_in_range(const std::string& key, int default_value, int min,
                                int max) const {
-  const int value = get<int>(key, default_value);
-  if (value < min || value > max)
-    fail(key, range_text(min, max) + ", got " + std::to_string(value));
-  return value;
+  return checked(*this, key, get<int>(key, default_value), Range::closed(min, max));
+}
+
+namespace {
+std::string checked_choice(const Settings& s, const std::string& key, const std::string& value,
+                           const std::vector<std::string>& choices) {
+  for (const auto& choice : choices)
+    if (choice == value) return value;
+  s.fail(key, "'" + value + "' is not one of: " + join(choices) + did_you_mean(value, choices));
+}
+}  // namespace
+
+std::string Settings::required_choice(const std::string& key,
+                                      const std::vector<std::string>& choices) const {
+  return checked_choice(*this, key, required<std::string>(key), choices);
 }
 
 std::string Settings::get_choice(const std::string& key, const std::string& default_value,
                                  const std::vector<std::string>& choices) const {
-  const std::string value = get<std::string>(key, default_value);
-  for (const auto& choice : choices)
-    if (choice == value) return value;
-  fail(key, "'" + value + "' is not one of: " + join(choices) + did_you_mean(value, choices));
+  return checked_choice(*this, key, get<std::string>(key, default_value), choices);
 }
 
 Settings Settings::child(const std::string& key) const {

@@ -19,6 +19,25 @@ class CaseError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// The allowed values of a number, with a readable description for messages.
+struct Range {
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  bool min_exclusive = false;
+  bool max_exclusive = false;
+
+  static Range any() { return {}; }
+  static Range positive() { return {0.0, std::numeric_limits<double>::infinity(), true}; }
+  static Range non_negative() { return at_least(0.0); }
+  static Range at_least(double min) { return {min, std::numeric_limits<double>::infinity()}; }
+  /// [min, max]
+  static Range closed(double min, double max) { return {min, max}; }
+
+  bool contains(double value) const;
+  /// ">= 0", "> 0", "in (0, 2]"
+  std::string describe() const;
+};
+
 class Settings {
  public:
   /// Parse a YAML or JSON file. Throws CaseError on a syntax error (with file and line).
@@ -30,14 +49,17 @@ class Settings {
   T required(const std::string& key) const;
   template <class T>
   T get(const std::string& key, const T& default_value) const;
-  /// A number in [min, max] (inclusive), with a default.
-  double get_in_range(const std::string& key, double default_value, double min,
-                      double max = std::numeric_limits<double>::infinity()) const;
-  double required_in_range(const std::string& key, double min,
-                           double max = std::numeric_limits<double>::infinity()) const;
+  /// A number in `range`, required or with a default.
+  double required_in_range(const std::string& key, const Range& range) const;
+  double get_in_range(const std::string& key, double default_value, const Range& range) const;
+  /// An integer in [min, max], required or with a default.
+  int required_int_in_range(const std::string& key, int min,
+                            int max = std::numeric_limits<int>::max()) const;
   int get_int_in_range(const std::string& key, int default_value, int min,
                        int max = std::numeric_limits<int>::max()) const;
-  /// One of `choices`; error with did-you-mean otherwise.
+  /// One of `choices`, required or with a default; error with did-you-mean otherwise.
+  std::string required_choice(const std::string& key,
+                              const std::vector<std::string>& choices) const;
   std::string get_choice(const std::string& key, const std::string& default_value,
                          const std::vector<std::string>& choices) const;
 

@@ -12,7 +12,7 @@ namespace {
 class NormCriterion : public ConvergenceCriterion {
  public:
   explicit NormCriterion(const Settings& s)
-      : tolerance_(s.required_in_range("tolerance", 0.0)),
+      : tolerance_(s.required_in_range("tolerance", Range::non_negative())),
         order_(s.get_choice("order", "2", {"1", "2", "inf"})) {}
 
  protected:

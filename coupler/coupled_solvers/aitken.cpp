@@ -12,7 +12,7 @@ namespace {
 class Aitken : public CoupledSolver {
  public:
   explicit Aitken(const Settings& s)
-      : CoupledSolver(s), omega_max_(s.get_in_range("omega_max", 0.5, 1e-12, 2.0)) {}
+      : CoupledSolver(s), omega_max_(s.get_in_range("omega_max", 0.5, {0.0, 2.0, true})) {}
 
  protected:
   /// The first factor of a step continues from the last one of the previous step, capped.

@@ -21,7 +21,7 @@ CoupledSolver::CoupledSolver(const Settings& settings)
       criterion_(ConvergenceCriterionRegistry::instance().create(
           settings.child("convergence_criterion"))),
       divergence_factor_(
-          settings.child_or_empty("divergence").get_in_range("factor", 1e6, 1.0)) {}
+          settings.child_or_empty("divergence").get_in_range("factor", 1e6, Range::at_least(1.0))) {}
 
 void CoupledSolver::initialize(SolverWrapper& first, SolverWrapper& second) {
   solvers_ = {&first, &second};

@@ -13,7 +13,7 @@ class Iqni : public CoupledSolver {
  public:
   explicit Iqni(const Settings& s)
       : CoupledSolver(s),
-        omega_(s.get_in_range("omega", 0.01, 1e-12, 2.0)),
+        omega_(s.get_in_range("omega", 0.01, {0.0, 2.0, true})),
         model_type_(s.child("model").required<std::string>("type")),
         model_(ModelRegistry::instance().create(s.child("model"))) {}
 

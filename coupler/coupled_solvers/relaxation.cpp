@@ -35,7 +35,7 @@ class GaussSeidel : public CoupledSolver {
 class Relaxation : public CoupledSolver {
  public:
   explicit Relaxation(const Settings& s)
-      : CoupledSolver(s), omega_(s.required_in_range("omega", 1e-12, 2.0)) {}
+      : CoupledSolver(s), omega_(s.required_in_range("omega", {0.0, 2.0, true})) {}
 
  protected:
   Eigen::VectorXd next_input(const Eigen::VectorXd& x, const Eigen::VectorXd&,

@@ -3,15 +3,17 @@
 #include <stdexcept>
 
 #include "coupler/case/suggest.hpp"
+#include "solver_wrappers/protocol/variable_components.hpp"
 
 namespace cocopp {
 
 const std::vector<VariableInfo>& variable_table() {
-  static const std::vector<VariableInfo> table = {
-      {"displacement", 3, "m"},  {"pressure", 1, "Pa"},   {"traction", 3, "Pa"},
-      {"force", 3, "N"},         {"velocity", 3, "m/s"},  {"temperature", 1, "K"},
-      {"heat_flux", 1, "W/m2"},
-  };
+  static const std::vector<VariableInfo> table = [] {
+    std::vector<VariableInfo> out;
+    for (const auto& d : protocol::variable_definitions())
+      out.push_back({d.name, d.components, d.unit});
+    return out;
+  }();
   return table;
 }
 

@@ -1,16 +1,19 @@
 #include "solver_wrappers/protocol/variable_components.hpp"
 
-#include <utility>
-
 namespace cocopp::protocol {
 
-int variable_components(const std::string& variable) {
-  static const std::pair<const char*, int> table[] = {
-      {"displacement", 3}, {"pressure", 1},    {"traction", 3},  {"force", 3},
-      {"velocity", 3},     {"temperature", 1}, {"heat_flux", 1},
+const std::vector<VariableDefinition>& variable_definitions() {
+  static const std::vector<VariableDefinition> table = {
+      {"displacement", 3, "m"}, {"pressure", 1, "Pa"},   {"traction", 3, "Pa"},
+      {"force", 3, "N"},        {"velocity", 3, "m/s"},  {"temperature", 1, "K"},
+      {"heat_flux", 1, "W/m2"},
   };
-  for (const auto& [name, components] : table)
-    if (variable == name) return components;
+  return table;
+}
+
+int variable_components(const std::string& variable) {
+  for (const auto& definition : variable_definitions())
+    if (variable == definition.name) return definition.components;
   return 0;
 }
 

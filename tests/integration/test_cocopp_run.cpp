@@ -1,8 +1,6 @@
 // `cocopp run` / `cocopp check` end to end, as a user runs them.
 #include <gtest/gtest.h>
 
-#include <regex>
-
 #include "run_helpers.hpp"
 
 using namespace cocopp::testing;
@@ -111,9 +109,10 @@ TEST(CocoppCheck, TypoInAKeyNamesFileLineAndSuggestion) {
   edit(dir / "case.yaml", "  omega: 0.05", "  omgea: 0.05");
   const CommandResult check = run_cocopp("check " + (dir / "case.yaml").string());
   EXPECT_EQ(check.exit_code, 2);
-  EXPECT_TRUE(std::regex_search(check.output, std::regex("case\\.yaml:1[0-9]:3: unknown key "
-                                                         "'coupled_solver\\.omgea'; did you mean "
-                                                         "'omega'\\?")))
+  // The key is on line 10, column 3 of the example.
+  EXPECT_NE(check.output.find("case.yaml:10:3: unknown key 'coupled_solver.omgea'; did you mean "
+                              "'omega'?"),
+            std::string::npos)
       << check.output;
   fs::remove_all(dir);
 }
@@ -141,7 +140,7 @@ TEST(CocoppCheck, UnknownTypeWrongTypeAndRange) {
   edit(file, "delta_t: 1.0e-4", "delta_t: -1.0e-4");
   check = run_cocopp("check " + file.string());
   EXPECT_NE(check.output.find("case.yaml:6:"), std::string::npos) << check.output;
-  EXPECT_NE(check.output.find("'settings.delta_t': must be >="), std::string::npos)
+  EXPECT_NE(check.output.find("'settings.delta_t': must be > 0, got -0.0001"), std::string::npos)
       << check.output;
 
   write_text(file, original);

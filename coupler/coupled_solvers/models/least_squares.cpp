@@ -20,8 +20,8 @@ class LeastSquares : public Model {
  public:
   explicit LeastSquares(const Settings& s)
       : reused_steps_(s.get_int_in_range("q", 0, 0)),
-        min_significant_(s.get_in_range("min_significant", 1e-12, 0.0)),
-        min_significant_relative_(s.get_in_range("min_significant_relative", 0.0, 0.0, 1.0)) {}
+        min_significant_(s.get_in_range("min_significant", 1e-12, Range::non_negative())),
+        min_significant_relative_(s.get_in_range("min_significant_relative", 0.0, Range::closed(0.0, 1.0))) {}
 
   void initialize_step() override { has_reference_ = false; }
 

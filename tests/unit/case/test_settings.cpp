@@ -62,7 +62,7 @@ TEST(Settings, MissingRequiredKeyNamesTheSection) {
 TEST(Settings, OutOfRangeValue) {
   const Settings root = Settings::load_string(kYaml, "case.yaml");
   const std::string message =
-      error_of([&] { root.child("settings").required_in_range("delta_t", 0.01); });
+      error_of([&] { root.child("settings").required_in_range("delta_t", cocopp::Range::at_least(0.01)); });
   EXPECT_NE(message.find("case.yaml:2:"), std::string::npos) << message;
   EXPECT_NE(message.find("must be >= 0.01"), std::string::npos) << message;
 }
