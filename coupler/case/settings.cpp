@@ -43,7 +43,7 @@ struct Settings::Document {
 
 Settings Settings::load_file(const std::filesystem::path& file) {
   std::ifstream in(file);
-  if (!in) throw CaseError(file.string() + ": cannot open the case file");
+  if (!in) throw CaseError(file.string() + ": cannot open the file");
   std::stringstream text;
   text << in.rdbuf();
   return load_string(text.str(), file.string());
@@ -210,13 +210,19 @@ double Settings::get_in_range(const std::string& key, double default_value,
   return checked(*this, key, get<double>(key, default_value), range);
 }
 
+namespace {
+Range int_range(int min, int max) {
+  return max == std::numeric_limits<int>::max() ? Range::at_least(min) : Range::closed(min, max);
+}
+}  // namespace
+
 int Settings::required_int_in_range(const std::string& key, int min, int max) const {
-  return checked(*this, key, required<int>(key), Range::closed(min, max));
+  return checked(*this, key, required<int>(key), int_range(min, max));
 }
 
 int Settings::get_int_in_range(const std::string& key, int default_value, int min,
                                int max) const {
-  return checked(*this, key, get<int>(key, default_value), Range::closed(min, max));
+  return checked(*this, key, get<int>(key, default_value), int_range(min, max));
 }
 
 namespace {

@@ -21,15 +21,17 @@ constexpr int pressure_index(int i) {
 // Four sub- and four super-diagonals: the boundary rows extrapolate over two cells.
 constexpr int kBandwidth = 4;
 
-InletBoundary read_inlet_boundary(const InputSection& inlet) {
-  const std::string name = inlet.choice("boundary", {"pressure", "velocity", "total_pressure"});
+InletBoundary read_inlet_boundary(const Settings& inlet) {
+  const std::string name =
+      inlet.required_choice("boundary", {"pressure", "velocity", "total_pressure"});
   if (name == "velocity") return InletBoundary::kVelocity;
   if (name == "total_pressure") return InletBoundary::kTotalPressure;
   return InletBoundary::kPressure;
 }
 
-InletFunction read_inlet_function(const InputSection& inlet) {
-  const std::string name = inlet.choice("variable", {"sine", "pulse", "sin2", "constant", "ramp"});
+InletFunction read_inlet_function(const Settings& inlet) {
+  const std::string name =
+      inlet.required_choice("variable", {"sine", "pulse", "sin2", "constant", "ramp"});
   if (name == "sine") return InletFunction::kSine;
   if (name == "pulse") return InletFunction::kPulse;
   if (name == "sin2") return InletFunction::kSin2;
@@ -37,28 +39,28 @@ InletFunction read_inlet_function(const InputSection& inlet) {
   return InletFunction::kConstant;
 }
 
-InletParameters read_inlet(const InputSection& input) {
-  const InputSection section = input.section("inlet");
+InletParameters read_inlet(const Settings& input) {
+  const Settings section = input.child("inlet");
   InletParameters inlet;
   inlet.boundary = read_inlet_boundary(section);
   inlet.variable = read_inlet_function(section);
-  inlet.reference = section.number_or("reference", 0.0);
-  inlet.amplitude = section.number("amplitude");
+  inlet.reference = section.get<double>("reference", 0.0);
+  inlet.amplitude = section.required<double>("amplitude");
   // A constant inlet has no period; it is accepted (and ignored) so that switching the
   // function does not require deleting the key.
   inlet.period = inlet.variable == InletFunction::kConstant
-                     ? section.number_or("period", 0.0)
-                     : section.number("period", Range::positive());
+                     ? section.get<double>("period", 0.0)
+                     : section.required_in_range("period", Range::positive());
   return inlet;
 }
 
-OutletParameters read_outlet(const InputSection& input) {
-  const InputSection section = input.section("outlet");
+OutletParameters read_outlet(const Settings& input) {
+  const Settings section = input.child("outlet");
   OutletParameters outlet;
-  const std::string name = section.choice("boundary", {"fixed", "non_reflecting"});
+  const std::string name = section.required_choice("boundary", {"fixed", "non_reflecting"});
   outlet.boundary = name == "fixed" ? OutletBoundary::kFixed : OutletBoundary::kNonReflecting;
   if (outlet.boundary == OutletBoundary::kFixed) {
-    outlet.pressure = section.number_or("pressure", 0.0);
+    outlet.pressure = section.get<double>("pressure", 0.0);
   } else if (section.has("pressure")) {
     section.fail("pressure", "a non_reflecting outlet takes no pressure");
   }
@@ -93,27 +95,27 @@ double TubeFlowParameters::wave_speed_squared() const {
   return e * h / (rho_f * geometry.diameter);
 }
 
-TubeFlowParameters TubeFlowParameters::read(const InputSection& input) {
+TubeFlowParameters TubeFlowParameters::read(const Settings& input) {
   TubeFlowParameters parameters;
   parameters.geometry = TubeGeometry::read(input);
-  parameters.rho_f = input.number("rho_f", Range::positive());
-  parameters.e = input.number("e", Range::positive());
-  parameters.h = input.number("h", Range::positive());
-  parameters.u_ref = input.number("u_ref", Range::non_negative());
-  parameters.u0 = input.number_or("u0", 0.0);
-  parameters.p_ref = input.number_or("p_ref", 0.0);
+  parameters.rho_f = input.required_in_range("rho_f", Range::positive());
+  parameters.e = input.required_in_range("e", Range::positive());
+  parameters.h = input.required_in_range("h", Range::positive());
+  parameters.u_ref = input.required_in_range("u_ref", Range::non_negative());
+  parameters.u0 = input.get<double>("u0", 0.0);
+  parameters.p_ref = input.get<double>("p_ref", 0.0);
   parameters.inlet = read_inlet(input);
   parameters.outlet = read_outlet(input);
-  parameters.newtonmax = input.integer("newtonmax", 1);
-  parameters.newtontol = input.number("newtontol", Range::positive());
+  parameters.newtonmax = input.required_int_in_range("newtonmax", 1);
+  parameters.newtontol = input.required_in_range("newtontol", Range::positive());
   parameters.output = OutputSettings::read(input);
   return parameters;
 }
 
 TubeFlowParameters TubeFlowParameters::load(const std::string& file) {
-  const InputSection input = InputSection::load_file(file);
+  const Settings input = Settings::load_file(file);
   TubeFlowParameters parameters = read(input);
-  input.check_unknown_keys();
+  input.check_unused_keys();
   return parameters;
 }
 

@@ -51,8 +51,8 @@ struct TubeFlowParameters {
   double wave_speed_squared() const;
 
   /// Read the keys of a flow input file (unknown keys are reported by the caller's
-  /// input.check_unknown_keys()).
-  static TubeFlowParameters read(const InputSection& input);
+  /// input.check_unused_keys()).
+  static TubeFlowParameters read(const Settings& input);
   /// Read a flow input file and reject unknown keys.
   static TubeFlowParameters load(const std::string& file);
 };

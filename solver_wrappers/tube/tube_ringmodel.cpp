@@ -13,25 +13,25 @@ double TubeRingmodelParameters::wave_speed_squared() const {
   return e * h / (rho_f * geometry.diameter);
 }
 
-TubeRingmodelParameters TubeRingmodelParameters::read(const InputSection& input) {
+TubeRingmodelParameters TubeRingmodelParameters::read(const Settings& input) {
   TubeRingmodelParameters parameters;
   parameters.geometry = TubeGeometry::read(input);
-  parameters.rho_f = input.number("rho_f", Range::positive());
-  parameters.e = input.number("e", Range::positive());
-  parameters.h = input.number("h", Range::positive());
-  parameters.p_ref = input.number_or("p_ref", 0.0);
+  parameters.rho_f = input.required_in_range("rho_f", Range::positive());
+  parameters.e = input.required_in_range("e", Range::positive());
+  parameters.h = input.required_in_range("h", Range::positive());
+  parameters.p_ref = input.get<double>("p_ref", 0.0);
   parameters.output = OutputSettings::read(input);
   return parameters;
 }
 
 TubeRingmodelParameters TubeRingmodelParameters::load(const std::string& file) {
-  const InputSection input = InputSection::load_file(file);
+  const Settings input = Settings::load_file(file);
   TubeRingmodelParameters parameters = read(input);
   // c0^2 must be positive; report it against the input file.
   if (parameters.wave_speed_squared() - parameters.p_ref / (2.0 * parameters.rho_f) <= 0.0) {
     input.fail("p_ref", "too high: E h / (rho_f d) - p_ref / (2 rho_f) must be positive");
   }
-  input.check_unknown_keys();
+  input.check_unused_keys();
   return parameters;
 }
 

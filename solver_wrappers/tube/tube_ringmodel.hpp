@@ -20,7 +20,7 @@ struct TubeRingmodelParameters {
   /// Moens-Korteweg wave speed squared, E h / (rho_f d).
   double wave_speed_squared() const;
 
-  static TubeRingmodelParameters read(const InputSection& input);
+  static TubeRingmodelParameters read(const Settings& input);
   static TubeRingmodelParameters load(const std::string& file);
 };
 

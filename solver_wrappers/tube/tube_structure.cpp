@@ -10,10 +10,10 @@ namespace cocopp::tube {
 
 namespace {
 
-void read_time_scheme(const InputSection& input, TubeStructureParameters& parameters) {
-  const InputSection scheme = input.section_or_empty("time_scheme");
+void read_time_scheme(const Settings& input, TubeStructureParameters& parameters) {
+  const Settings scheme = input.child_or_empty("time_scheme");
   const std::string type =
-      scheme.choice_or("type", "backward_euler", {"backward_euler", "newmark"});
+      scheme.get_choice("type", "backward_euler", {"backward_euler", "newmark"});
   if (type == "backward_euler") {
     for (const char* key : {"beta", "gamma"}) {
       if (scheme.has(key)) scheme.fail(key, "only the newmark time scheme takes beta and gamma");
@@ -26,8 +26,8 @@ void read_time_scheme(const InputSection& input, TubeStructureParameters& parame
   parameters.time_scheme = TimeScheme::kNewmark;
   // Defaults: the average-acceleration (trapezoidal) rule, unconditionally stable and
   // without numerical damping.
-  parameters.gamma = scheme.number_or("gamma", 0.5, Range::at_least(0.5));
-  parameters.beta = scheme.number_or("beta", 0.25, Range::positive());
+  parameters.gamma = scheme.get_in_range("gamma", 0.5, Range::at_least(0.5));
+  parameters.beta = scheme.get_in_range("beta", 0.25, Range::positive());
   const double min_beta = (0.5 + parameters.gamma) * (0.5 + parameters.gamma) / 4.0;
   if (parameters.beta < min_beta) {
     scheme.fail("beta", "must be >= (1/2 + gamma)^2 / 4 = " + std::to_string(min_beta) +
@@ -37,23 +37,23 @@ void read_time_scheme(const InputSection& input, TubeStructureParameters& parame
 
 }  // namespace
 
-TubeStructureParameters TubeStructureParameters::read(const InputSection& input) {
+TubeStructureParameters TubeStructureParameters::read(const Settings& input) {
   TubeStructureParameters parameters;
   parameters.geometry = TubeGeometry::read(input);
-  parameters.rho_s = input.number("rho_s", Range::positive());
-  parameters.e = input.number("e", Range::positive());
-  parameters.h = input.number("h", Range::positive());
-  parameters.nu = input.number("nu", Range::half_open(0.0, 0.5));
-  parameters.p_ref = input.number_or("p_ref", 0.0);
+  parameters.rho_s = input.required_in_range("rho_s", Range::positive());
+  parameters.e = input.required_in_range("e", Range::positive());
+  parameters.h = input.required_in_range("h", Range::positive());
+  parameters.nu = input.required_in_range("nu", Range{0.0, 0.5, false, true});
+  parameters.p_ref = input.get<double>("p_ref", 0.0);
   read_time_scheme(input, parameters);
   parameters.output = OutputSettings::read(input);
   return parameters;
 }
 
 TubeStructureParameters TubeStructureParameters::load(const std::string& file) {
-  const InputSection input = InputSection::load_file(file);
+  const Settings input = Settings::load_file(file);
   TubeStructureParameters parameters = read(input);
-  input.check_unknown_keys();
+  input.check_unused_keys();
   return parameters;
 }
 

@@ -26,7 +26,7 @@ struct TubeStructureParameters {
   double gamma = 1.0;  ///< Newmark gamma (1 for backward Euler)
   OutputSettings output;
 
-  static TubeStructureParameters read(const InputSection& input);
+  static TubeStructureParameters read(const Settings& input);
   static TubeStructureParameters load(const std::string& file);
 };
 

@@ -1,8 +1,10 @@
-// The tube solvers' input files: errors name file, line and key; the examples parse.
+// The tube solvers' input files, read with cocopp::Settings: errors are CaseErrors that name
+// file, line and key; the examples parse.
 #include <gtest/gtest.h>
 
 #include <string>
 
+#include "coupler/case/settings.hpp"
 #include "solver_wrappers/tube/tube_flow.hpp"
 #include "solver_wrappers/tube/tube_input.hpp"
 #include "solver_wrappers/tube/tube_ringmodel.hpp"
@@ -36,9 +38,9 @@ output:
 )";
 
 TubeFlowParameters read_flow(const std::string& text) {
-  const InputSection input = InputSection::load_string(text, "tube_flow.yaml");
+  const Settings input = Settings::load_string(text, "tube_flow.yaml");
   TubeFlowParameters parameters = TubeFlowParameters::read(input);
-  input.check_unknown_keys();
+  input.check_unused_keys();
   return parameters;
 }
 
@@ -52,7 +54,7 @@ std::string replace(std::string text, const std::string& from, const std::string
 std::string flow_error(const std::string& text) {
   try {
     read_flow(text);
-  } catch (const std::runtime_error& error) {
+  } catch (const CaseError& error) {
     return error.what();
   }
   return "";
@@ -74,46 +76,63 @@ TEST(TubeInput, ReadsAFlowFile) {
 TEST(TubeInput, UnknownKeyNamesFileLineAndKey) {
   const std::string message = flow_error(replace(kFlowFile, "u0: 0", "u_0: 0"));
   EXPECT_NE(message.find("tube_flow.yaml:8:"), std::string::npos) << message;
-  EXPECT_NE(message.find("u_0"), std::string::npos) << message;
-  EXPECT_NE(message.find("unknown key"), std::string::npos) << message;
+  EXPECT_NE(message.find("unknown key 'u_0'"), std::string::npos) << message;
+  EXPECT_NE(message.find("did you mean 'u0'?"), std::string::npos) << message;
 }
 
 TEST(TubeInput, UnknownNestedKeyNamesItsPath) {
   const std::string message = flow_error(replace(kFlowFile, "  period: 0.003", "  perod: 0.003"));
   // A pulse needs its period, so the missing key is reported first, at the inlet mapping.
   EXPECT_NE(message.find("tube_flow.yaml:11:"), std::string::npos) << message;
-  EXPECT_NE(message.find("inlet.period"), std::string::npos) << message;
+  EXPECT_NE(message.find("missing required key 'inlet.period'"), std::string::npos) << message;
   const std::string unknown = flow_error(replace(kFlowFile, "  reference: 0", "  referance: 0"));
   EXPECT_NE(unknown.find("tube_flow.yaml:13:"), std::string::npos) << unknown;
-  EXPECT_NE(unknown.find("inlet.referance: unknown key"), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("unknown key 'inlet.referance'"), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("did you mean 'reference'?"), std::string::npos) << unknown;
 }
 
 TEST(TubeInput, MissingKeyIsReported) {
   const std::string message = flow_error(replace(kFlowFile, "rho_f: 1000\n", ""));
   EXPECT_NE(message.find("tube_flow.yaml:1:"), std::string::npos) << message;
-  EXPECT_NE(message.find("rho_f: missing required key"), std::string::npos) << message;
+  EXPECT_NE(message.find("missing required key 'rho_f'"), std::string::npos) << message;
 }
 
 TEST(TubeInput, NonPositiveLengthIsRejected) {
   const std::string message = flow_error(replace(kFlowFile, "length: 0.05", "length: -0.05"));
   EXPECT_NE(message.find("tube_flow.yaml:1:"), std::string::npos) << message;
-  EXPECT_NE(message.find("length: value -0.05 out of range: must be > 0"), std::string::npos)
-      << message;
+  EXPECT_NE(message.find("'length': must be > 0, got -0.05"), std::string::npos) << message;
   EXPECT_NE(flow_error(replace(kFlowFile, "length: 0.05", "length: 0")), "");
+}
+
+TEST(TubeInput, TooFewCellsAreRejected) {
+  // The boundary rows extrapolate from two cells, so one cell is not enough.
+  const std::string message = flow_error(replace(kFlowFile, "cells: 100", "cells: 1"));
+  EXPECT_NE(message.find("tube_flow.yaml:3:"), std::string::npos) << message;
+  EXPECT_NE(message.find("'cells': must be"), std::string::npos) << message;
+  EXPECT_NE(message.find("got 1"), std::string::npos) << message;
+  EXPECT_EQ(flow_error(replace(kFlowFile, "cells: 100", "cells: 2")), "");
+}
+
+TEST(TubeInput, OutputDirectoryMustNotBeEmpty) {
+  const std::string message =
+      flow_error(replace(kFlowFile, "  interval: 10\n", "  interval: 10\n  directory: \"\"\n"));
+  EXPECT_NE(message.find("tube_flow.yaml:23:"), std::string::npos) << message;
+  EXPECT_NE(message.find("'output.directory': must not be empty"), std::string::npos) << message;
 }
 
 TEST(TubeInput, WrongTypesAndChoicesAreRejected) {
   const std::string cells = flow_error(replace(kFlowFile, "cells: 100", "cells: 10.5"));
   EXPECT_NE(cells.find("tube_flow.yaml:3:"), std::string::npos) << cells;
-  EXPECT_NE(cells.find("cells: expected an integer"), std::string::npos) << cells;
+  EXPECT_NE(cells.find("'cells': expected an integer, got '10.5'"), std::string::npos) << cells;
   const std::string number = flow_error(replace(kFlowFile, "e: 3.0e5", "e: stiff"));
   EXPECT_NE(number.find("tube_flow.yaml:5:"), std::string::npos) << number;
-  EXPECT_NE(number.find("e: expected a number"), std::string::npos) << number;
+  EXPECT_NE(number.find("'e': expected a number, got 'stiff'"), std::string::npos) << number;
   const std::string choice = flow_error(replace(kFlowFile, "boundary: fixed", "boundary: fixd"));
   EXPECT_NE(choice.find("tube_flow.yaml:17:"), std::string::npos) << choice;
-  EXPECT_NE(choice.find("outlet.boundary: expected one of fixed, non_reflecting"),
+  EXPECT_NE(choice.find("'outlet.boundary': 'fixd' is not one of: fixed, non_reflecting"),
             std::string::npos)
       << choice;
+  EXPECT_NE(choice.find("did you mean 'fixed'?"), std::string::npos) << choice;
 }
 
 TEST(TubeInput, SyntaxErrorNamesTheLine) {
@@ -126,7 +145,7 @@ TEST(TubeInput, MissingFileIsReported) {
   try {
     TubeFlowParameters::load("/nonexistent/tube_flow.yaml");
     FAIL() << "expected an exception";
-  } catch (const std::runtime_error& error) {
+  } catch (const CaseError& error) {
     EXPECT_NE(std::string(error.what()).find("/nonexistent/tube_flow.yaml"), std::string::npos);
   }
 }
@@ -144,14 +163,35 @@ time_scheme:
   gamma: 0.6
   beta: 0.25
 )";
-  const InputSection input = InputSection::load_string(base, "tube_structure.yaml");
+  const Settings input = Settings::load_string(base, "tube_structure.yaml");
   try {
     TubeStructureParameters::read(input);
     FAIL() << "beta below (1/2 + gamma)^2 / 4 must be rejected";
-  } catch (const std::runtime_error& error) {
-    EXPECT_NE(std::string(error.what()).find("tube_structure.yaml:11: time_scheme.beta"),
-              std::string::npos)
-        << error.what();
+  } catch (const CaseError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("tube_structure.yaml:11:"), std::string::npos) << message;
+    EXPECT_NE(message.find("'time_scheme.beta': must be >= (1/2 + gamma)^2 / 4"), std::string::npos)
+        << message;
+  }
+}
+
+TEST(TubeInput, PoissonRatioIsBelowOneHalf) {
+  const std::string base = R"(length: 0.05
+diameter: 0.01
+cells: 100
+rho_s: 1200
+e: 3.0e5
+h: 1.0e-3
+nu: 0.5
+)";
+  const Settings input = Settings::load_string(base, "tube_structure.yaml");
+  try {
+    TubeStructureParameters::read(input);
+    FAIL() << "nu = 0.5 must be rejected";
+  } catch (const CaseError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("tube_structure.yaml:7:"), std::string::npos) << message;
+    EXPECT_NE(message.find("'nu': must be in [0, 0.5), got 0.5"), std::string::npos) << message;
   }
 }
 
