@@ -1,14 +1,9 @@
 // cocopp-tube-structure: the 1D tube wall with inertia (TubeStructure) as a cocopp solver
 // executable.
-#include <iostream>
 #include <memory>
-#include <stdexcept>
-#include <string>
 
-#include "solver_wrappers/sdk/solver_sdk.hpp"
-#include "solver_wrappers/tube/tube_output.hpp"
+#include "solver_wrappers/tube/tube_solver.hpp"
 #include "solver_wrappers/tube/tube_structure.hpp"
-#include "solver_wrappers/tube/wall_interface.hpp"
 
 namespace {
 
@@ -38,57 +33,14 @@ Input file keys (SI units):
     directory             output directory (default output)
 )";
 
-class TubeStructureSolver : public cocopp::sdk::Solver {
- public:
-  explicit TubeStructureSolver(std::string input_file) : input_file_(std::move(input_file)) {}
-
-  cocopp::sdk::InterfaceDescription initialize(const cocopp::sdk::RunInfo& run) override {
-    structure_ = std::make_unique<cocopp::tube::TubeStructure>(
-        cocopp::tube::TubeStructureParameters::load(input_file_), run.delta_t, run.timestep_start);
-    structure_->output_step(structure_->step());
-    cocopp::sdk::InterfaceDescription description;
-    description.model_parts.push_back(cocopp::tube::wall_model_part(
-        structure_->parameters().geometry, {"pressure", "traction"}, {"displacement"}));
-    description.initial_output =
-        cocopp::tube::to_vector(cocopp::tube::radial_vectors(structure_->displacement()));
-    return description;
-  }
-
-  void initialize_step(std::int32_t step, double /*time*/) override {
-    structure_->initialize_step();
-    if (step != structure_->step()) {
-      throw std::runtime_error("tube structure: the coupler started step " + std::to_string(step) +
-                               ", expected step " + std::to_string(structure_->step()));
-    }
-  }
-
-  // Input: m pressures, then m traction vectors (ignored: the wall only feels pressure).
-  std::vector<double> solve(const std::vector<double>& input) override {
-    const int m = structure_->cells();
-    if (input.size() != 4 * static_cast<std::size_t>(m)) {
-      throw std::runtime_error("tube structure: interface input has " +
-                               std::to_string(input.size()) + " values, expected " +
-                               std::to_string(4 * m));
-    }
-    const Eigen::VectorXd pressure = Eigen::Map<const Eigen::VectorXd>(input.data(), m);
-    return cocopp::tube::to_vector(cocopp::tube::radial_vectors(structure_->solve(pressure)));
-  }
-
-  void finalize_step() override { structure_->finalize_step(); }
-  void output_step() override { structure_->output_step(structure_->step()); }
-
- private:
-  std::string input_file_;
-  std::unique_ptr<cocopp::tube::TubeStructure> structure_;
-};
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (cocopp::tube::wants_help(argc, argv)) {
-    std::cout << kUsage;
-    return 0;
-  }
-  TubeStructureSolver solver(cocopp::tube::input_file_argument(argc, argv, "tube_structure.yaml"));
-  return cocopp::sdk::serve(solver, argc, argv);
+  using namespace cocopp::tube;
+  return run_tube_solver<TubeStructure, WallSide>(
+      argc, argv, kUsage, "tube_structure.yaml",
+      [](const std::string& input_file, const cocopp::sdk::RunInfo& run) {
+        return std::make_unique<TubeStructure>(TubeStructureParameters::load(input_file),
+                                               run.delta_t, run.timestep_start);
+      });
 }

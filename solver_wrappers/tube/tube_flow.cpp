@@ -113,10 +113,7 @@ TubeFlowParameters TubeFlowParameters::read(const Settings& input) {
 }
 
 TubeFlowParameters TubeFlowParameters::load(const std::string& file) {
-  const Settings input = Settings::load_file(file);
-  TubeFlowParameters parameters = read(input);
-  input.check_unused_keys();
-  return parameters;
+  return load_input_file<TubeFlowParameters>(file);
 }
 
 TubeFlow::TubeFlow(TubeFlowParameters parameters, double delta_t, int timestep_start)

@@ -38,4 +38,13 @@ struct OutputSettings {
   static OutputSettings read(const Settings& input);
 };
 
+/// Read a solver's input file with `Parameters::read`; keys nobody read are errors.
+template <class Parameters>
+Parameters load_input_file(const std::string& file) {
+  const Settings input = Settings::load_file(file);
+  Parameters parameters = Parameters::read(input);
+  input.check_unused_keys();
+  return parameters;
+}
+
 }  // namespace cocopp::tube

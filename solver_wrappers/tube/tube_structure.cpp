@@ -51,10 +51,7 @@ TubeStructureParameters TubeStructureParameters::read(const Settings& input) {
 }
 
 TubeStructureParameters TubeStructureParameters::load(const std::string& file) {
-  const Settings input = Settings::load_file(file);
-  TubeStructureParameters parameters = read(input);
-  input.check_unused_keys();
-  return parameters;
+  return load_input_file<TubeStructureParameters>(file);
 }
 
 TubeStructure::TubeStructure(TubeStructureParameters parameters, double delta_t, int timestep_start)

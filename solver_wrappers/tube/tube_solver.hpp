@@ -1,0 +1,106 @@
+#pragma once
+// The SDK face shared by the three tube solver executables: TubeSolver<Model, Side> drives a
+// tube model (TubeFlow, TubeStructure, TubeRingmodel) through the cocopp protocol; `Side` says
+// which way the interface data goes (FlowSide: displacement in, loads out; WallSide: loads in,
+// displacement out).
+#include <functional>
+#include <iostream>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "solver_wrappers/sdk/solver_sdk.hpp"
+#include "solver_wrappers/tube/tube_output.hpp"
+#include "solver_wrappers/tube/wall_interface.hpp"
+
+namespace cocopp::tube {
+
+/// Displacement in (its y component is the radial displacement); pressure and a zero traction
+/// (inviscid flow) out.
+struct FlowSide {
+  static std::vector<std::string> inputs() { return {"displacement"}; }
+  static std::vector<std::string> outputs() { return {"pressure", "traction"}; }
+  template <class Model>
+  static void solve(Model& model, const std::vector<double>& input) {
+    model.solve(radial_component(input, model.cells()));
+  }
+  template <class Model>
+  static std::vector<double> output(const Model& model) {
+    std::vector<double> values = to_vector(model.pressure());
+    values.resize(values.size() + 3 * static_cast<std::size_t>(model.cells()), 0.0);
+    return values;
+  }
+};
+
+/// Pressure and traction in (the wall only feels pressure); displacement (0, dr, 0) out.
+struct WallSide {
+  static std::vector<std::string> inputs() { return {"pressure", "traction"}; }
+  static std::vector<std::string> outputs() { return {"displacement"}; }
+  template <class Model>
+  static void solve(Model& model, const std::vector<double>& input) {
+    const int m = model.cells();
+    if (input.size() != 4 * static_cast<std::size_t>(m))
+      throw std::runtime_error("interface input has " + std::to_string(input.size()) +
+                               " values, expected " + std::to_string(4 * m));
+    model.solve(Eigen::Map<const Eigen::VectorXd>(input.data(), m));
+  }
+  template <class Model>
+  static std::vector<double> output(const Model& model) {
+    return to_vector(radial_vectors(model.displacement()));
+  }
+};
+
+template <class Model, class Side>
+class TubeSolver : public sdk::Solver {
+ public:
+  /// Builds the model once the coupler has sent the time step.
+  using Factory = std::function<std::unique_ptr<Model>(const sdk::RunInfo&)>;
+  explicit TubeSolver(Factory make) : make_(std::move(make)) {}
+
+  sdk::InterfaceDescription initialize(const sdk::RunInfo& run) override {
+    model_ = make_(run);
+    model_->output_step(model_->step());
+    sdk::InterfaceDescription description;
+    description.model_parts.push_back(
+        wall_model_part(model_->parameters().geometry, Side::inputs(), Side::outputs()));
+    description.initial_output = Side::output(*model_);
+    return description;
+  }
+
+  void initialize_step(std::int32_t step, double /*time*/) override {
+    model_->initialize_step();
+    if (step != model_->step())
+      throw std::runtime_error("the coupler started step " + std::to_string(step) +
+                               ", expected step " + std::to_string(model_->step()));
+  }
+
+  std::vector<double> solve(const std::vector<double>& input) override {
+    Side::solve(*model_, input);
+    return Side::output(*model_);
+  }
+
+  void finalize_step() override { model_->finalize_step(); }
+  void output_step() override { model_->output_step(model_->step()); }
+
+ private:
+  Factory make_;
+  std::unique_ptr<Model> model_;
+};
+
+/// main() of a tube solver executable: --help prints `usage`, else serve the coupler with the
+/// model `make` builds from the input file (argv[1] or `default_input`).
+template <class Model, class Side, class Make>
+int run_tube_solver(int argc, char** argv, const char* usage, const std::string& default_input,
+                    Make make) {
+  if (wants_help(argc, argv)) {
+    std::cout << usage;
+    return 0;
+  }
+  const std::string input_file = input_file_argument(argc, argv, default_input);
+  TubeSolver<Model, Side> solver(
+      [input_file, make](const sdk::RunInfo& run) { return make(input_file, run); });
+  return sdk::serve(solver, argc, argv);
+}
+
+}  // namespace cocopp::tube
