@@ -143,6 +143,7 @@ class Run {
                                      double(iterations_) / steps, iterations_));
     if (writer_) line("results", writer_->path().string());
     line("summary", results_path(".summary.json").string());
+    std::fflush(stdout);  // the error comes last, after the summary, also when piped
     if (outcome.status != "completed") fmt::print(stderr, "\nerror: {}\n", outcome.message);
   }
 
