@@ -14,13 +14,13 @@ RunSettings read_run_settings(const Settings& s, const std::filesystem::path& ca
   run.timestep_start = s.get_int_in_range("timestep_start", 0, 0);
   const bool has_steps = s.has("number_of_timesteps");
   const bool has_end = s.has("end_time");
-  if (has_steps == has_end)
-    s.fail("", "give exactly one of 'number_of_timesteps' and 'end_time'");
+  if (has_steps == has_end) s.fail("", "give exactly one of 'number_of_timesteps' and 'end_time'");
   if (has_steps) {
     run.number_of_timesteps = s.get_int_in_range("number_of_timesteps", 1, 1);
   } else {
     const double start_time = run.timestep_start * run.delta_t;
-    const double end_time = s.required_in_range("end_time", Range::at_least(start_time + run.delta_t));
+    const double end_time =
+        s.required_in_range("end_time", Range::at_least(start_time + run.delta_t));
     const double steps = (end_time - start_time) / run.delta_t;
     // Round to the nearest step; an end time between steps is a mistake worth reporting.
     if (std::abs(steps - std::round(steps)) > 1e-6 * steps)

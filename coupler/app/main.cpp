@@ -1,6 +1,7 @@
 // The `cocopp` command: run, check and list what a case file can name.
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
 
 #include "coupler/app/run.hpp"
 #include "coupler/case/suggest.hpp"

@@ -80,8 +80,8 @@ class Run {
       outcome = {"failed", e.what()};
     }
     if (interrupt_signal != 0)
-      outcome = {"interrupted", fmt::format("interrupted by signal {} ({})", interrupt_signal.load(),
-                                            strsignal(interrupt_signal))};
+      outcome = {"interrupted", fmt::format("interrupted by signal {} ({})",
+                                            interrupt_signal.load(), strsignal(interrupt_signal))};
     stop_solvers(outcome);
     finish(outcome);
     return outcome;

@@ -56,10 +56,10 @@ class Registry {
 
 /// Register `Class` (constructible from (const Settings&, Args...)) under `name` in the
 /// registry of `RegistryType`, e.g. COCOPP_REGISTER(PredictorRegistry, "linear", Linear).
-#define COCOPP_REGISTER(RegistryType, name, Class)                                   \
-  namespace {                                                                        \
-  const bool COCOPP_CONCAT(cocopp_registered_, __LINE__) =                           \
+#define COCOPP_REGISTER(RegistryType, name, Class)                                      \
+  namespace {                                                                           \
+  const bool COCOPP_CONCAT(cocopp_registered_, __LINE__) =                              \
       RegistryType::instance().add(name, [](const ::cocopp::Settings& s, auto&&... a) { \
-        return std::make_unique<Class>(s, std::forward<decltype(a)>(a)...);          \
-      });                                                                            \
+        return std::make_unique<Class>(s, std::forward<decltype(a)>(a)...);             \
+      });                                                                               \
   }

@@ -24,7 +24,8 @@ const char* type_name() {
 
 std::string location(const std::filesystem::path& file, const YAML::Mark& mark) {
   std::string out = file.string();
-  if (!mark.is_null()) out += ":" + std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1);
+  if (!mark.is_null())
+    out += ":" + std::to_string(mark.line + 1) + ":" + std::to_string(mark.column + 1);
   return out;
 }
 
@@ -76,7 +77,9 @@ Settings::Settings(std::shared_ptr<Document> document, YAML::Node node, std::str
   document_->mappings.push_back({node_, path_, {}});
 }
 
-const std::filesystem::path& Settings::file() const { return document_->file; }
+const std::filesystem::path& Settings::file() const {
+  return document_->file;
+}
 
 std::filesystem::path Settings::base_directory() const {
   auto dir = document_->file.parent_path();
@@ -126,7 +129,8 @@ T Settings::convert(const YAML::Node& value, const std::string& key) const {
     }
     T result = value.as<T>();
     if constexpr (std::is_same_v<T, double>)
-      if (!std::isfinite(result)) fail(key, "must be a finite number, got '" + value.Scalar() + "'");
+      if (!std::isfinite(result))
+        fail(key, "must be a finite number, got '" + value.Scalar() + "'");
     return result;
   } catch (const YAML::Exception&) {
     std::string got = value.IsScalar() ? "'" + value.Scalar() + "'"
@@ -161,8 +165,8 @@ template double Settings::get<double>(const std::string&, const double&) const;
 template int Settings::get<int>(const std::string&, const int&) const;
 template bool Settings::get<bool>(const std::string&, const bool&) const;
 template std::string Settings::get<std::string>(const std::string&, const std::string&) const;
-template std::vector<double> Settings::get<std::vector<double>>(
-    const std::string&, const std::vector<double>&) const;
+template std::vector<double> Settings::get<std::vector<double>>(const std::string&,
+                                                                const std::vector<double>&) const;
 template std::vector<std::string> Settings::get<std::vector<std::string>>(
     const std::string&, const std::vector<std::string>&) const;
 
@@ -220,8 +224,7 @@ int Settings::required_int_in_range(const std::string& key, int min, int max) co
   return checked(*this, key, required<int>(key), int_range(min, max));
 }
 
-int Settings::get_int_in_range(const std::string& key, int default_value, int min,
-                               int max) const {
+int Settings::get_int_in_range(const std::string& key, int default_value, int min, int max) const {
   return checked(*this, key, get<int>(key, default_value), int_range(min, max));
 }
 

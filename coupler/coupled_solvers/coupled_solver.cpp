@@ -18,10 +18,11 @@ CoupledSolver::CoupledSolver(const Settings& settings)
     : type_(settings.required<std::string>("type")),
       predictor_type_(settings.child("predictor").required<std::string>("type")),
       predictor_(PredictorRegistry::instance().create(settings.child("predictor"))),
-      criterion_(ConvergenceCriterionRegistry::instance().create(
-          settings.child("convergence_criterion"))),
+      criterion_(
+          ConvergenceCriterionRegistry::instance().create(settings.child("convergence_criterion"))),
       divergence_factor_(
-          settings.child_or_empty("divergence").get_in_range("factor", 1e6, Range::at_least(1.0))) {}
+          settings.child_or_empty("divergence").get_in_range("factor", 1e6, Range::at_least(1.0))) {
+}
 
 void CoupledSolver::initialize(SolverWrapper& first, SolverWrapper& second) {
   solvers_ = {&first, &second};
@@ -129,8 +130,8 @@ void CoupledSolver::check_finite(const Interface& data, const SolverWrapper& sol
         throw DivergenceError(fmt::format(
             "solver '{}' returned a non-finite {} at model part '{}', point {} (of {}), in time "
             "step {}, coupling iteration {}. {}",
-            solver.name(), block.variable, block.model_part, point, values.rows(), step,
-            iteration, divergence_advice()));
+            solver.name(), block.variable, block.model_part, point, values.rows(), step, iteration,
+            divergence_advice()));
   }
 }
 
@@ -155,8 +156,8 @@ std::string CoupledSolver::divergence_advice() const {
 std::string CoupledSolver::describe() const {
   const std::string settings = describe_settings();
   return fmt::format("{}{}, predictor {}, stop at {}", type_,
-                     settings.empty() ? "" : " (" + settings + ")",
-                     predictor_type_, criterion_->describe());
+                     settings.empty() ? "" : " (" + settings + ")", predictor_type_,
+                     criterion_->describe());
 }
 
 }  // namespace cocopp

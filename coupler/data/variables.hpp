@@ -11,7 +11,8 @@ struct VariableInfo {
   std::string unit;
 };
 
-/// All variables an interface can carry (the table is solver_wrappers/protocol/variable_components.cpp).
+/// All variables an interface can carry (the table is
+/// solver_wrappers/protocol/variable_components.cpp).
 const std::vector<VariableInfo>& variable_table();
 
 /// The variable called `name`; throws std::invalid_argument naming the nearest known variable.

@@ -4,8 +4,8 @@ namespace cocopp::protocol {
 
 const std::vector<VariableDefinition>& variable_definitions() {
   static const std::vector<VariableDefinition> table = {
-      {"displacement", 3, "m"}, {"pressure", 1, "Pa"},   {"traction", 3, "Pa"},
-      {"force", 3, "N"},        {"velocity", 3, "m/s"},  {"temperature", 1, "K"},
+      {"displacement", 3, "m"}, {"pressure", 1, "Pa"},  {"traction", 3, "Pa"},
+      {"force", 3, "N"},        {"velocity", 3, "m/s"}, {"temperature", 1, "K"},
       {"heat_flux", 1, "W/m2"},
   };
   return table;

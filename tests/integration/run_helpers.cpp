@@ -1,6 +1,7 @@
 #include "run_helpers.hpp"
 
 #include <hdf5.h>
+#include <sys/wait.h>
 
 #include <array>
 #include <cstdio>
@@ -8,7 +9,6 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
-#include <sys/wait.h>
 
 namespace cocopp::testing {
 
@@ -20,7 +20,8 @@ CommandResult run_command(const std::string& command) {
   if (!pipe) throw std::runtime_error("cannot run " + command);
   std::array<char, 4096> buffer{};
   std::size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+    result.output.append(buffer.data(), n);
   const int status = pclose(pipe);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
@@ -32,8 +33,8 @@ CommandResult run_cocopp(const std::string& arguments) {
 
 fs::path copy_example(const std::string& example, const std::string& tag) {
   const fs::path source = fs::path(COCOPP_TEST_SOURCE_DIR) / "examples" / example;
-  const fs::path target = fs::temp_directory_path() /
-                          ("cocopp_test_" + tag + "_" + std::to_string(::getpid()));
+  const fs::path target =
+      fs::temp_directory_path() / ("cocopp_test_" + tag + "_" + std::to_string(::getpid()));
   fs::remove_all(target);
   fs::create_directories(target);
   fs::copy(source, target, fs::copy_options::recursive);

@@ -84,8 +84,8 @@ TEST(CocoppRun, YamlAndJsonGiveIdenticalRuns) {
   const fs::path json_dir = copy_example("tube/flow_structure", "fs_json");
   ASSERT_EQ(run_cocopp("run -q " + (yaml_dir / "case.yaml").string()).exit_code, 0);
   ASSERT_EQ(run_cocopp("run -q " + (json_dir / "case.json").string()).exit_code, 0);
-  for (const char* dataset : {"steps/iterations", "residuals/norms", "x/wall/displacement",
-                              "y/wall/pressure"}) {
+  for (const char* dataset :
+       {"steps/iterations", "residuals/norms", "x/wall/displacement", "y/wall/pressure"}) {
     const auto from_yaml = read_dataset(yaml_dir / "results" / "case.h5", dataset);
     const auto from_json = read_dataset(json_dir / "results" / "case.h5", dataset);
     ASSERT_FALSE(from_yaml.empty()) << dataset;

@@ -31,7 +31,7 @@ solver_wrappers:
     name: flow
     working_directory: test_flow
     command: [)" + (fs::path(COCOPP_TEST_BIN_DIR) / "cocopp-test-solver").string() +
-                                         "]\n" + flow_settings + R"(
+                                    "]\n" + flow_settings + R"(
   - {type: tube_structure, name: structure, working_directory: structure}
 )");
   return dir;
@@ -90,8 +90,7 @@ TEST(SolverFailures, NaNStopsTheRunAsDiverged) {
   EXPECT_NE(run.output.find("solver 'flow' returned a non-finite pressure at model part 'wall'"),
             std::string::npos)
       << run.output;
-  EXPECT_NE(run.output.find("time step 4, coupling iteration 2"), std::string::npos)
-      << run.output;
+  EXPECT_NE(run.output.find("time step 4, coupling iteration 2"), std::string::npos) << run.output;
   expect_stopped(dir, "diverged", 3);
   fs::remove_all(dir);
 }
@@ -99,9 +98,9 @@ TEST(SolverFailures, NaNStopsTheRunAsDiverged) {
 TEST(SolverFailures, InterruptStopsTheSolversAndKeepsTheResults) {
   const fs::path dir = failing_case("interrupt", "fail hang\nfail_step 3");
   // SIGINT after 2 s, while the flow solver hangs in step 3 (its timeout is 600 s).
-  const CommandResult run = run_command("timeout -s INT 2 " +
-                                        (fs::path(COCOPP_TEST_BIN_DIR) / "cocopp").string() +
-                                        " run " + (dir / "case.yaml").string());
+  const CommandResult run =
+      run_command("timeout -s INT 2 " + (fs::path(COCOPP_TEST_BIN_DIR) / "cocopp").string() +
+                  " run " + (dir / "case.yaml").string());
   EXPECT_NE(run.exit_code, 0) << run.output;
   EXPECT_NE(run.output.find("interrupted by signal 2"), std::string::npos) << run.output;
   expect_stopped(dir, "interrupted", 2);

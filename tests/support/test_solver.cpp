@@ -25,6 +25,12 @@
 
 #include "solver_wrappers/sdk/solver_sdk.hpp"
 
+// In sanitizer builds, let a requested crash be a real SIGSEGV (as users see it) instead of
+// AddressSanitizer's report and exit code 1. Unused without a sanitizer.
+extern "C" const char* __asan_default_options() {
+  return "handle_segv=0";
+}
+
 namespace {
 
 using cocopp::sdk::InterfaceDescription;

@@ -61,15 +61,15 @@ TEST(Settings, MissingRequiredKeyNamesTheSection) {
 
 TEST(Settings, OutOfRangeValue) {
   const Settings root = Settings::load_string(kYaml, "case.yaml");
-  const std::string message =
-      error_of([&] { root.child("settings").required_in_range("delta_t", cocopp::Range::at_least(0.01)); });
+  const std::string message = error_of(
+      [&] { root.child("settings").required_in_range("delta_t", cocopp::Range::at_least(0.01)); });
   EXPECT_NE(message.find("case.yaml:2:"), std::string::npos) << message;
   EXPECT_NE(message.find("must be >= 0.01"), std::string::npos) << message;
 }
 
 TEST(Settings, UnknownKeySuggestsTheNearestValidOne) {
-  const Settings root = Settings::load_string("settings:\n  delta_t: 1\n  number_of_timestep: 3\n",
-                                              "case.yaml");
+  const Settings root =
+      Settings::load_string("settings:\n  delta_t: 1\n  number_of_timestep: 3\n", "case.yaml");
   const Settings run = root.child("settings");
   run.required<double>("delta_t");
   run.get<int>("number_of_timesteps", 1);
@@ -89,8 +89,9 @@ TEST(Settings, UnreadSectionIsUnknown) {
 
 TEST(Settings, ChoiceSuggestsNearest) {
   const Settings root = Settings::load_string("transport: pipes\n", "c.yaml");
-  const std::string message =
-      error_of([&] { root.get_choice("transport", "pipe", {"pipe", "file"}); });
+  const std::string message = error_of([&] {
+    root.get_choice("transport", "pipe", {"pipe", "file"});
+  });
   EXPECT_NE(message.find("did you mean 'pipe'?"), std::string::npos) << message;
 }
 
@@ -98,8 +99,7 @@ TEST(Settings, JsonIsReadWithLineNumbers) {
   const Settings root =
       Settings::load_string("{\n  \"settings\": {\n    \"delta_t\": \"x\"\n  }\n}\n", "case.json");
   EXPECT_EQ(root.child("settings").path(), "settings");
-  const std::string message =
-      error_of([&] { root.child("settings").required<double>("delta_t"); });
+  const std::string message = error_of([&] { root.child("settings").required<double>("delta_t"); });
   EXPECT_NE(message.find("case.json:3:"), std::string::npos) << message;
 }
 

@@ -41,7 +41,8 @@ class AffineSolver : public SolverWrapper {
     ++calls;
     const auto& in_block = input.blocks().front();
     const auto in = input.values(in_block.model_part, in_block.variable);
-    const Eigen::VectorXd result = matrix_ * Eigen::VectorXd(in.col(in.cols() > 1 ? 1 : 0)) + offset_;
+    const Eigen::VectorXd result =
+        matrix_ * Eigen::VectorXd(in.col(in.cols() > 1 ? 1 : 0)) + offset_;
     const auto& out_block = output_.blocks().front();
     auto out = output_.values(out_block.model_part, out_block.variable);
     out.setZero();

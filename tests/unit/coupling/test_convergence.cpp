@@ -11,7 +11,9 @@ std::unique_ptr<ConvergenceCriterion> make(const std::string& yaml) {
   return ConvergenceCriterionRegistry::instance().create(Settings::load_string(yaml, "c.yaml"));
 }
 
-Eigen::VectorXd residual(double norm) { return Eigen::VectorXd::Constant(4, norm / 2.0); }
+Eigen::VectorXd residual(double norm) {
+  return Eigen::VectorXd::Constant(4, norm / 2.0);
+}
 
 }  // namespace
 

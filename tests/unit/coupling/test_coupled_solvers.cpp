@@ -29,7 +29,8 @@ struct Problem {
   Eigen::VectorXd solution;  ///< radial displacement at the fixed point
 };
 
-std::unique_ptr<CoupledSolver> make(const std::string& type_and_settings, int max_iterations = 100) {
+std::unique_ptr<CoupledSolver> make(const std::string& type_and_settings,
+                                    int max_iterations = 100) {
   const std::string yaml = type_and_settings +
                            "\npredictor: {type: constant}\n"
                            "convergence_criterion:\n  type: or\n  criteria:\n"
@@ -139,7 +140,7 @@ TEST(CoupledSolvers, TimingsAddUp) {
   coupled->initialize(*problem.flow, *problem.structure);
   const StepRecord record = coupled->solve_step(1, 0.1);
   ASSERT_EQ(record.solver_times.size(), 2u);
-  EXPECT_NEAR(record.wall_time, record.solver_times[0] + record.solver_times[1] + record.coupler_time,
-              1e-12);
+  EXPECT_NEAR(record.wall_time,
+              record.solver_times[0] + record.solver_times[1] + record.coupler_time, 1e-12);
   EXPECT_GE(record.coupler_time, 0.0);
 }

@@ -49,8 +49,8 @@ TEST(LeastSquares, ReproducesPreciceReferenceValues) {
   const Eigen::VectorXd update = model->predict(-r2);
   const Eigen::VectorXd d3 = dt2 + update.head(4);
   const double f3 = 0.199 + update(4);
-  const Eigen::VectorXd expected = vec({-0.565217391304349, 0.608695652173912, 1.78260869565217,
-                                       2.95652173913043});
+  const Eigen::VectorXd expected =
+      vec({-0.565217391304349, 0.608695652173912, 1.78260869565217, 2.95652173913043});
   for (int i = 0; i < 4; ++i) EXPECT_NEAR(d3(i), expected(i), 1e-13) << i;
   EXPECT_NEAR(f3, 0.0827826086956522, 1e-14);
 }

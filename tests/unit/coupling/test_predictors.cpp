@@ -18,10 +18,18 @@ double predict_after(Predictor& p, int steps, double (*f)(double)) {
   return p.predict()(0);
 }
 
-double constant(double) { return 3.0; }
-double linear(double t) { return 1.0 + 2.0 * t; }
-double quadratic(double t) { return 1.0 - t + 0.5 * t * t; }
-double cubic(double t) { return 2.0 + t - t * t + 0.25 * t * t * t; }
+double constant(double) {
+  return 3.0;
+}
+double linear(double t) {
+  return 1.0 + 2.0 * t;
+}
+double quadratic(double t) {
+  return 1.0 - t + 0.5 * t * t;
+}
+double cubic(double t) {
+  return 2.0 + t - t * t + 0.25 * t * t * t;
+}
 
 }  // namespace
 

@@ -25,8 +25,7 @@ void expect_factorizes(const QrFactorization& qr, const Eigen::MatrixXd& v) {
   // |R_jj| equals the norm of column j's part orthogonal to the columns before it.
   for (Eigen::Index j = 1; j < v.cols(); ++j) {
     const Eigen::MatrixXd before = v.leftCols(j);
-    const Eigen::VectorXd part =
-        v.col(j) - before * before.colPivHouseholderQr().solve(v.col(j));
+    const Eigen::VectorXd part = v.col(j) - before * before.colPivHouseholderQr().solve(v.col(j));
     EXPECT_NEAR(qr.diagonal(j), part.norm(), 1e-10 * v.col(j).norm()) << "column " << j;
   }
 }

@@ -19,7 +19,9 @@ using nlohmann::json;
 constexpr const char* kPython = "/usr/bin/python3";
 constexpr int kSteps = 12;  // so that step 10 of the docs example exists
 
-std::filesystem::path source_dir() { return COCOPP_TEST_SOURCE_DIR; }
+std::filesystem::path source_dir() {
+  return COCOPP_TEST_SOURCE_DIR;
+}
 
 std::string quoted(const std::filesystem::path& path) {
   std::string out = "'";
