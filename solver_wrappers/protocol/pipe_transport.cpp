@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <sys/stat.h>
+#include <sys/uio.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -158,8 +159,17 @@ void PipeTransport::send(const Frame& frame, double timeout_seconds,
   std::uint8_t prefix[kLengthPrefixBytes];
   encode_length_prefix(frame.size(), prefix);
   const Deadline deadline(timeout_seconds);
-  write_all(prefix, sizeof prefix, deadline, still_alive_check);
-  write_all(frame.data(), frame.size(), deadline, still_alive_check);
+  // One system call for prefix and payload, so the reader wakes up once per message.
+  iovec parts[2] = {{prefix, sizeof prefix},
+                    {const_cast<std::uint8_t*>(frame.data()), frame.size()}};
+  const ssize_t put = ::writev(write_fd_, parts, 2);
+  const std::size_t written = put > 0 ? static_cast<std::size_t>(put) : 0;
+  // Whatever the pipe did not take at once (or an error to report) goes the careful way.
+  if (written < sizeof prefix)
+    write_all(prefix + written, sizeof prefix - written, deadline, still_alive_check);
+  const std::size_t payload_written = written > sizeof prefix ? written - sizeof prefix : 0;
+  write_all(frame.data() + payload_written, frame.size() - payload_written, deadline,
+            still_alive_check);
 }
 
 Frame PipeTransport::receive(double timeout_seconds, const AliveCheck& still_alive_check) {
