@@ -93,9 +93,10 @@ Statistics measure(protocol::TransportKind kind, std::size_t doubles, int round_
 
 int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "--help") {
-    std::puts("usage: bench_protocol_roundtrip [doubles=300] [round_trips=2000]\n"
-              "Round-trip latency of one SOLVE request with its DATA reply, over the pipe and the "
-              "file transport, against a forked echo solver.");
+    std::puts(
+        "usage: bench_protocol_roundtrip [doubles=300] [round_trips=2000]\n"
+        "Round-trip latency of one SOLVE request with its DATA reply, over the pipe and the "
+        "file transport, against a forked echo solver.");
     return 0;
   }
   const std::size_t doubles = argc > 1 ? std::stoul(argv[1]) : 300;

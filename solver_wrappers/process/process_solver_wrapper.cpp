@@ -36,13 +36,6 @@ struct ReportedError : std::exception {
   std::string text;
 };
 
-double positive_seconds(const Settings& settings, const std::string& key, double default_value) {
-  const double value = settings.get<double>(key, default_value);
-  if (!(value > 0))
-    settings.fail(key, fmt::format("must be a number of seconds > 0, got {}", value));
-  return value;
-}
-
 auto decode_ok = [](const Frame& frame) { protocol::decode_empty(frame, MessageType::kOk); };
 
 }  // namespace
@@ -126,8 +119,8 @@ ProcessSolverWrapper::ProcessSolverWrapper(const Settings& settings, const RunSe
   read_command(settings, default_command);
   transport_kind_ =
       protocol::parse_transport_kind(settings.get_choice("transport", "pipe", {"pipe", "file"}));
-  timeout_ = positive_seconds(settings, "timeout", 600.0);
-  startup_timeout_ = positive_seconds(settings, "startup_timeout", 60.0);
+  timeout_ = settings.get_in_range("timeout", 600.0, Range::positive());  // seconds
+  startup_timeout_ = settings.get_in_range("startup_timeout", 60.0, Range::positive());
   log_file_ = working_directory_ / settings.get<std::string>("log_file", name_ + ".log");
 }
 
