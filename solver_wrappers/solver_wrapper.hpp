@@ -27,6 +27,8 @@ class SolverWrapper {
   virtual const std::string& name() const = 0;
   /// One line for the run header: what runs where (command, working directory, log file).
   virtual std::string describe() const { return name(); }
+  /// After initialize(): what was started, for the run header, e.g. "flow (pid 1234)".
+  virtual std::string started() const { return name(); }
   /// Validate what can be validated without running (input files exist, executable found).
   virtual void check() const {}
 

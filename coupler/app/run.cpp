@@ -91,6 +91,8 @@ class Run {
   void march(const RunOptions& options) {
     CoupledSolver& coupled = *case_.coupled_solver;
     coupled.initialize(*case_.solvers[0], *case_.solvers[1]);
+    fmt::print("  started        : {}, {}\n", case_.solvers[0]->started(),
+               case_.solvers[1]->started());
     writer_ = std::make_unique<ResultsWriter>(results_path(".h5"), describe_run(case_), coupled.x(),
                                               coupled.y());
     const int first = case_.run.timestep_start + 1;

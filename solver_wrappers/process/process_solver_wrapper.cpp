@@ -156,6 +156,10 @@ std::string ProcessSolverWrapper::describe() const {
                      protocol::transport_name(transport_kind_));
 }
 
+std::string ProcessSolverWrapper::started() const {
+  return child_ ? fmt::format("{} (pid {})", name_, child_->pid()) : name_;
+}
+
 void ProcessSolverWrapper::check() const {
   const std::string solver = "solver '" + name_ + "': ";
   if (!std::filesystem::is_directory(working_directory_))

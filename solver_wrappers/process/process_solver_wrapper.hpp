@@ -41,6 +41,7 @@ class ProcessSolverWrapper : public SolverWrapper {
   ProcessSolverWrapper& operator=(const ProcessSolverWrapper&) = delete;
 
   const std::string& name() const override { return name_; }
+  std::string started() const override;
   std::string describe() const override;
   void check() const override;
 

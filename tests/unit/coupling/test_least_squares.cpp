@@ -23,7 +23,7 @@ Eigen::VectorXd vec(std::initializer_list<double> values) {
 
 }  // namespace
 
-// coupling-methods.md, "A reference value for IQN-ILS (from preCICE's unit tests)": primary
+// The reference values of preCICE's IQN-ILS unit test: primary
 // data d (4 values) in the least-squares problem, secondary data f only in W.
 TEST(LeastSquares, ReproducesPreciceReferenceValues) {
   auto model = make("type: ls");

@@ -4,9 +4,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <csignal>
 #include <fstream>
-#include <regex>
 
 #include "coupler/results/results_writer.hpp"
 #include "tests/unit/results/results_fixture.hpp"
@@ -22,6 +22,16 @@ class ResultsWriterTest : public ::testing::Test {
   std::filesystem::path dir_;
 };
 
+/// "2026-11-22T00:37:54Z" (no std::regex: GCC 12 warns falsely on it under sanitizers).
+bool is_iso_utc_time(const std::string& text) {
+  const std::string shape = "dddd-dd-ddTdd:dd:ddZ";
+  if (text.size() != shape.size()) return false;
+  for (std::size_t i = 0; i < shape.size(); ++i)
+    if (shape[i] == 'd' ? !std::isdigit(static_cast<unsigned char>(text[i])) : text[i] != shape[i])
+      return false;
+  return true;
+}
+
 TEST_F(ResultsWriterTest, WritesRunAttributes) {
   const auto file = dir_ / "run.h5";
   write_run(file, 3);
@@ -36,9 +46,8 @@ TEST_F(ResultsWriterTest, WritesRunAttributes) {
   EXPECT_DOUBLE_EQ(read_number(f, "/", "delta_t"), 0.01);
   EXPECT_EQ(read_number(f, "/", "timestep_start"), 0);
   EXPECT_EQ(read_number(f, "/", "number_of_timesteps"), 3);
-  const std::regex iso(R"(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ)");
-  EXPECT_TRUE(std::regex_match(read_string(f, "/", "created"), iso));
-  EXPECT_TRUE(std::regex_match(read_string(f, "/", "finished"), iso));
+  EXPECT_TRUE(is_iso_utc_time(read_string(f, "/", "created")));
+  EXPECT_TRUE(is_iso_utc_time(read_string(f, "/", "finished")));
   EXPECT_EQ(read_string(f, "/", "status"), "completed");
   EXPECT_EQ(read_string(f, "/", "message"), "all 3 steps done");
   EXPECT_EQ(read_number(f, "/", "steps_written"), 3);
