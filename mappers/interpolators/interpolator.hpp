@@ -1,0 +1,78 @@
+#pragma once
+// Interpolators: linear operators that carry point values from one set of points (the source)
+// to another (the target), built from the coordinates of both.
+//
+//   consistent mapping  target = M source      (displacement, pressure, traction)
+//   conservative        source = M^T target    (nodal forces: totals preserved)
+//
+// The base class reads the settings every interpolator shares, selects the coordinate
+// directions, checks the point sets and handles target points that have no partner; a concrete
+// interpolator only builds its operator from the selected coordinates.
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <string>
+#include <vector>
+
+#include "coupler/case/registry.hpp"
+#include "coupler/data/interface.hpp"
+#include "coupler/data/model_part.hpp"
+
+namespace cocopp {
+
+/// Distances from each target point to its source stencil, for the mapping quality report.
+struct MappingQuality {
+  double min_distance = 0.0;
+  double mean_distance = 0.0;
+  double max_distance = 0.0;
+  int fallbacks = 0;  ///< targets that used a documented fallback (e.g. linear -> nearest)
+  int unmatched = 0;  ///< targets farther than `max_distance` from the source points
+};
+
+class Interpolator {
+ public:
+  static constexpr const char* kind = "mapper";
+  /// Shared keys: `directions` (list of x, y, z; default all three), `max_distance` (a target
+  /// farther than this from the source points has no partner; default: no limit),
+  /// `unmatched` (zero | nearest | error, default zero: what an unmatched target gets).
+  explicit Interpolator(const Settings& settings);
+  virtual ~Interpolator() = default;
+
+  /// Build the operator from `source` to `target` points (rows x y z). Throws
+  /// std::invalid_argument for duplicate points, empty sets, bounding boxes that do not
+  /// overlap, degenerate geometry, or unmatched points when `unmatched: error`.
+  void initialize(const Coordinates& source, const Coordinates& target);
+
+  /// Consistent mapping: values at the target points (rows) from values at the source points.
+  RowMatrix map(const RowMatrix& source_values) const;
+  /// Conservative mapping: M^T applied to values at the target points.
+  RowMatrix map_transpose(const RowMatrix& target_values) const;
+
+  const MappingQuality& quality() const { return quality_; }
+  Eigen::Index source_size() const { return source_size_; }
+  Eigen::Index target_size() const { return target_size_; }
+
+ protected:
+  /// Build the sparse operator (target rows x source columns) from points with only the
+  /// selected directions (n x d, d = 1..3), filling quality_ (distances, fallbacks).
+  /// Interpolators that are not a plain sparse matrix override apply/apply_transpose too.
+  virtual void build(const Eigen::MatrixXd& source, const Eigen::MatrixXd& target) = 0;
+  virtual RowMatrix apply(const RowMatrix& source_values) const;
+  virtual RowMatrix apply_transpose(const RowMatrix& target_values) const;
+
+  Eigen::SparseMatrix<double, Eigen::RowMajor> matrix_;
+  MappingQuality quality_;
+
+ private:
+  Eigen::MatrixXd select_directions(const Coordinates& points) const;
+  void treat_unmatched(const Eigen::MatrixXd& source, const Eigen::MatrixXd& target);
+
+  std::vector<int> directions_;  ///< 0 = x, 1 = y, 2 = z
+  double max_distance_;
+  std::string unmatched_;
+  std::vector<Eigen::Index> unmatched_targets_;
+  Eigen::Index source_size_ = 0, target_size_ = 0;
+};
+
+using InterpolatorRegistry = Registry<Interpolator>;
+
+}  // namespace cocopp
