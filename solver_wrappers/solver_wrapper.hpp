@@ -37,6 +37,12 @@ class SolverWrapper {
   virtual const Interface& input_interface() const = 0;
   virtual const Interface& output_interface() const = 0;
 
+  /// Wrappers that present the other solver's interface (a mapped wrapper) return true and
+  /// adopt it here, after both solvers are initialized: `input` is what the other solver gives,
+  /// `output` what it takes. Others keep their own interfaces.
+  virtual bool adopts_interfaces() const { return false; }
+  virtual void adopt_interfaces(const Interface& /*input*/, const Interface& /*output*/) {}
+
   /// Advance to time step `step` (time = step * delta_t).
   virtual void initialize_step(int step, double time) = 0;
   /// One coupling iteration: solve the step with `input`, return the output interface.

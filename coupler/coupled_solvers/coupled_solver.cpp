@@ -27,12 +27,28 @@ CoupledSolver::CoupledSolver(const Settings& settings)
 void CoupledSolver::initialize(SolverWrapper& first, SolverWrapper& second) {
   solvers_ = {&first, &second};
   for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->initialize(); });
+  adopt_interfaces();
   check_interfaces_match();
   x_ = first.input_interface();
   y_ = first.output_interface();
   // Start from the displacement the second solver reports for its initial state.
   x_.set_data(second.output_interface().data());
   predictor_->initialize(x_.data());
+}
+
+void CoupledSolver::adopt_interfaces() {
+  if (solvers_[0]->adopts_interfaces() && solvers_[1]->adopts_interfaces())
+    throw std::runtime_error(fmt::format(
+        "solvers '{}' and '{}' are both mapped: one of them must keep its own interface, which "
+        "the other maps onto",
+        solvers_[0]->name(), solvers_[1]->name()));
+  for (int i = 0; i < 2; ++i) {
+    SolverWrapper& other = *solvers_[1 - i];
+    if (solvers_[i]->adopts_interfaces())
+      timed(i, [&] {
+        solvers_[i]->adopt_interfaces(other.output_interface(), other.input_interface());
+      });
+  }
 }
 
 void CoupledSolver::check_interfaces_match() const {

@@ -69,6 +69,7 @@ class CoupledSolver {
   void check_finite(const Interface& data, const SolverWrapper& solver, int step,
                     int iteration) const;
   void check_divergence(const std::vector<double>& norms, int step, double time) const;
+  void adopt_interfaces();
   void check_interfaces_match() const;
 
   std::string predictor_type_;

@@ -10,12 +10,14 @@
 // interpolator only builds its operator from the selected coordinates.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "coupler/case/registry.hpp"
 #include "coupler/data/interface.hpp"
 #include "coupler/data/model_part.hpp"
+#include "mappers/interpolators/point_search.hpp"
 
 namespace cocopp {
 
@@ -59,17 +61,37 @@ class Interpolator {
   virtual RowMatrix apply(const RowMatrix& source_values) const;
   virtual RowMatrix apply_transpose(const RowMatrix& target_values) const;
 
+  /// The k-d tree over the source points (selected directions), built once per initialize.
+  const PointSearch& source_search() const { return *source_search_; }
+  /// Target indices in a spatially coherent order: build loops that follow it find their
+  /// neighbours in the cache (several times faster on large random point sets).
+  const std::vector<Eigen::Index>& target_order() const { return target_search_->spatial_order(); }
+  /// Fill the distance fields of quality_ from one stencil distance per target point.
+  void record_distances(const Eigen::VectorXd& distances);
+
   Eigen::SparseMatrix<double, Eigen::RowMajor> matrix_;
   MappingQuality quality_;
 
  private:
   Eigen::MatrixXd select_directions(const Coordinates& points) const;
+  std::string direction_names() const;
+  void check_not_empty(const Coordinates& points, const std::string& name) const;
+  void check_no_duplicates(const PointSearch& search, const Eigen::MatrixXd& selected,
+                           const Coordinates& points, const std::string& name) const;
+  void check_boxes_overlap(const Eigen::MatrixXd& source, const Eigen::MatrixXd& target) const;
   void treat_unmatched(const Eigen::MatrixXd& source, const Eigen::MatrixXd& target);
+  void check_initialized() const;
+
+  std::unique_ptr<PointSearch> source_search_;
+  std::unique_ptr<PointSearch> target_search_;  ///< for the checks and target_order()
+
+  enum class Unmatched { kZero, kNearest, kError };
 
   std::vector<int> directions_;  ///< 0 = x, 1 = y, 2 = z
   double max_distance_;
-  std::string unmatched_;
+  Unmatched unmatched_;
   std::vector<Eigen::Index> unmatched_targets_;
+  std::vector<Eigen::Index> unmatched_nearest_sources_;  ///< per unmatched target
   Eigen::Index source_size_ = 0, target_size_ = 0;
 };
 

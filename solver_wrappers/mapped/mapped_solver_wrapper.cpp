@@ -1,0 +1,181 @@
+// `mapped`: input mapper -> a real solver wrapper -> output mapper, so that a solver with its
+// own mesh couples to the other solver's interface. The wrapper presents the other solver's
+// interface to the coupled solver (adopt_interfaces) and maps, per model part pair (in order)
+// and per variable, between that interface and the inner solver's.
+//
+// Moving and sliding interfaces: with `coordinates: current` the mappers are rebuilt on the
+// current positions (initial coordinates plus the latest displacement each side knows of) every
+// time step or every coupling iteration (`rebuild`).
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+
+#include "mappers/mapper.hpp"
+#include "solver_wrappers/solver_wrapper.hpp"
+
+namespace cocopp {
+namespace {
+
+class MappedSolverWrapper : public SolverWrapper {
+ public:
+  MappedSolverWrapper(const Settings& settings, const RunSettings& run)
+      : inner_(SolverWrapperRegistry::instance().create(settings.child("solver_wrapper"), run)),
+        name_(settings.get<std::string>("name", inner_->name())),
+        input_settings_(settings.child("input_mapper")),
+        output_settings_(settings.child("output_mapper")),
+        rebuild_(settings.get_choice("rebuild", "never", {"never", "time_step", "iteration"})),
+        current_(settings.get_choice("coordinates", "initial", {"initial", "current"}) ==
+                 "current") {
+    // Build one mapper now so that `cocopp check` validates the mapper settings.
+    Mapper{input_settings_};
+    Mapper{output_settings_};
+  }
+
+  const std::string& name() const override { return name_; }
+  std::string describe() const override { return name_ + " mapped onto " + inner_->describe(); }
+  std::string started() const override { return inner_->started(); }
+  void check() const override { inner_->check(); }
+
+  void initialize() override { inner_->initialize(); }
+  bool adopts_interfaces() const override { return true; }
+
+  void adopt_interfaces(const Interface& input, const Interface& output) override {
+    input_ = input;
+    output_ = output;
+    pair_model_parts();
+    build_mappers();
+    map_output(inner_->output_interface());  // the initial output, as seen by the coupler
+  }
+
+  const Interface& input_interface() const override { return input_; }
+  const Interface& output_interface() const override { return output_; }
+
+  void initialize_step(int step, double time) override {
+    inner_->initialize_step(step, time);
+    if (rebuild_ == "time_step") build_mappers();
+  }
+
+  const Interface& solve(const Interface& input) override {
+    input_.set_data(input.data());
+    if (rebuild_ == "iteration") build_mappers();
+    Interface inner_input = inner_->input_interface();
+    for (const auto& pair : pairs_)
+      for (const auto& variable : variables_of(inner_input, pair.inner_input_part))
+        inner_input.values(pair.inner_input_part, variable) =
+            pair.input_mapper->map(input_.values(pair.outer_input_part, variable));
+    map_output(inner_->solve(inner_input));
+    return output_;
+  }
+
+  void finalize_step() override { inner_->finalize_step(); }
+  void output_step() override { inner_->output_step(); }
+  void finalize() override { inner_->finalize(); }
+
+ private:
+  /// The i-th model part of the coupler side maps to the i-th of the inner solver.
+  struct Pair {
+    std::string outer_input_part, inner_input_part, inner_output_part, outer_output_part;
+    std::unique_ptr<Mapper> input_mapper, output_mapper;
+  };
+
+  static std::vector<std::string> part_names(const Interface& interface) {
+    std::vector<std::string> names;
+    for (const auto& part : interface.parts()) names.push_back(part.model_part->name);
+    return names;
+  }
+
+  static std::vector<std::string> variables_of(const Interface& interface,
+                                               const std::string& part) {
+    for (const auto& p : interface.parts())
+      if (p.model_part->name == part) return p.variables;
+    return {};
+  }
+
+  void pair_model_parts() {
+    const auto outer_in = part_names(input_), outer_out = part_names(output_);
+    const auto inner_in = part_names(inner_->input_interface());
+    const auto inner_out = part_names(inner_->output_interface());
+    if (outer_in.size() != inner_in.size() || outer_out.size() != inner_out.size() ||
+        outer_in.size() != outer_out.size())
+      throw std::runtime_error(fmt::format(
+          "mapped solver '{}': the other solver's interface has {} input and {} output model "
+          "parts, '{}' has {} and {}: model parts are mapped pairwise, in order",
+          name_, outer_in.size(), outer_out.size(), inner_->name(), inner_in.size(),
+          inner_out.size()));
+    pairs_.clear();
+    for (std::size_t i = 0; i < outer_in.size(); ++i) {
+      Pair pair{outer_in[i],
+                inner_in[i],
+                inner_out[i],
+                outer_out[i],
+                std::make_unique<Mapper>(input_settings_),
+                std::make_unique<Mapper>(output_settings_)};
+      check_variables(input_, pair.outer_input_part, inner_->input_interface(),
+                      pair.inner_input_part);
+      check_variables(inner_->output_interface(), pair.inner_output_part, output_,
+                      pair.outer_output_part);
+      pairs_.push_back(std::move(pair));
+    }
+  }
+
+  /// Every variable the receiving side takes must be given by the sending side.
+  void check_variables(const Interface& from, const std::string& from_part, const Interface& to,
+                       const std::string& to_part) const {
+    const auto given = variables_of(from, from_part);
+    for (const auto& variable : variables_of(to, to_part))
+      if (std::find(given.begin(), given.end(), variable) == given.end())
+        throw std::runtime_error(fmt::format(
+            "mapped solver '{}': model part '{}' needs '{}', which model part '{}' does not "
+            "give (it gives: {})",
+            name_, to_part, variable, from_part, fmt::join(given, ", ")));
+  }
+
+  /// Initial coordinates of a model part, plus the latest displacement that either interface
+  /// of that side holds for it if `coordinates: current`.
+  Coordinates coordinates(const std::string& part, const Interface& a, const Interface& b) const {
+    const ModelPart* model_part = nullptr;
+    for (const Interface* interface : {&a, &b})
+      for (const auto& p : interface->parts()) {
+        if (p.model_part->name != part) continue;
+        model_part = p.model_part.get();
+        const auto& variables = p.variables;
+        if (current_ &&
+            std::find(variables.begin(), variables.end(), "displacement") != variables.end())
+          return model_part->coordinates + interface->values(part, "displacement");
+      }
+    return model_part->coordinates;
+  }
+
+  void build_mappers() {
+    const Interface& inner_in = inner_->input_interface();
+    const Interface& inner_out = inner_->output_interface();
+    for (auto& pair : pairs_) {
+      pair.input_mapper->initialize(coordinates(pair.outer_input_part, input_, output_),
+                                    coordinates(pair.inner_input_part, inner_in, inner_out));
+      pair.output_mapper->initialize(coordinates(pair.inner_output_part, inner_out, inner_in),
+                                     coordinates(pair.outer_output_part, output_, input_));
+    }
+  }
+
+  void map_output(const Interface& inner_output) {
+    for (const auto& pair : pairs_)
+      for (const auto& variable : variables_of(output_, pair.outer_output_part))
+        output_.values(pair.outer_output_part, variable) =
+            pair.output_mapper->map(inner_output.values(pair.inner_output_part, variable));
+  }
+
+  std::unique_ptr<SolverWrapper> inner_;
+  std::string name_;
+  Settings input_settings_, output_settings_;
+  std::string rebuild_;
+  bool current_;
+  Interface input_, output_;
+  std::vector<Pair> pairs_;
+};
+
+}  // namespace
+
+COCOPP_REGISTER(SolverWrapperRegistry, "mapped", MappedSolverWrapper)
+
+}  // namespace cocopp

@@ -1,0 +1,140 @@
+// The `mapped` solver wrapper on a sliding interface: a wire translates axially through a fixed
+// fluid interface; the pressure it receives is the analytic fluid pressure at its current
+// positions where it overlaps the fluid, and zero (ambient) outside.
+#include <gtest/gtest.h>
+
+#include "solver_wrappers/solver_wrapper.hpp"
+
+namespace cocopp {
+namespace {
+
+constexpr double kStepTranslation = 0.05;  ///< axial displacement of the wire per time step
+
+std::shared_ptr<ModelPart> line(const std::string& name, int points, double z0, double z1) {
+  auto part = std::make_shared<ModelPart>();
+  part->name = name;
+  part->coordinates = Coordinates::Zero(points, 3);
+  for (int i = 0; i < points; ++i) {
+    part->ids.push_back(i);
+    part->coordinates(i, 1) = 1.0;
+    part->coordinates(i, 2) = z0 + (z1 - z0) * i / (points - 1);
+  }
+  return part;
+}
+
+double fluid_pressure(double z) {
+  return 1.0 + z * z;
+}
+
+/// The fixed fluid side: 201 points on z in [0, 1], gives pressure, takes displacement.
+class Fluid : public SolverWrapper {
+ public:
+  Fluid() {
+    auto part = line("fluid", 201, 0.0, 1.0);
+    input_ = Interface({{part, {"displacement"}}});
+    output_ = Interface({{part, {"pressure"}}});
+    auto p = output_.values("fluid", "pressure");
+    for (Eigen::Index i = 0; i < p.rows(); ++i) p(i, 0) = fluid_pressure(part->coordinates(i, 2));
+  }
+  const std::string& name() const override { return name_; }
+  void initialize() override {}
+  const Interface& input_interface() const override { return input_; }
+  const Interface& output_interface() const override { return output_; }
+  void initialize_step(int, double) override {}
+  const Interface& solve(const Interface&) override { return output_; }
+  void finalize_step() override {}
+  void output_step() override {}
+  void finalize() override {}
+
+ private:
+  std::string name_ = "fluid";
+  Interface input_, output_;
+};
+
+/// The wire: 41 points on z in [-0.5, 0.5] moving by kStepTranslation per step; it records the
+/// pressure it receives and reports its axial displacement.
+class TranslatingWire : public SolverWrapper {
+ public:
+  TranslatingWire(const Settings& settings, const RunSettings&)
+      : name_(settings.get<std::string>("name", "wire")) {
+    auto part = line("wire", 41, -0.5, 0.5);
+    input_ = Interface({{part, {"pressure"}}});
+    output_ = Interface({{part, {"displacement"}}});
+    last = this;
+  }
+  const std::string& name() const override { return name_; }
+  void initialize() override {}
+  const Interface& input_interface() const override { return input_; }
+  const Interface& output_interface() const override { return output_; }
+  void initialize_step(int step, double) override { step_ = step; }
+  const Interface& solve(const Interface& input) override {
+    received = input.values("wire", "pressure");
+    output_.values("wire", "displacement").col(2).setConstant(kStepTranslation * step_);
+    return output_;
+  }
+  void finalize_step() override {}
+  void output_step() override {}
+  void finalize() override {}
+
+  static inline TranslatingWire* last = nullptr;
+  RowMatrix received;
+
+ private:
+  std::string name_;
+  Interface input_, output_;
+  int step_ = 0;
+};
+
+COCOPP_REGISTER(SolverWrapperRegistry, "test_translating_wire", TranslatingWire)
+
+TEST(MappedWrapper, SlidingWireGetsTheFluidPressureWhereItOverlaps) {
+  const Settings settings = Settings::load_string(R"(type: mapped
+solver_wrapper: {type: test_translating_wire}
+input_mapper: {type: linear, directions: [z], max_distance: 0.01, unmatched: zero}
+output_mapper: {type: nearest, directions: [z], components: [y]}
+coordinates: current
+rebuild: time_step
+)",
+                                                  "case.yaml");
+  // The fluid slips along the wire: only the radial (y) displacement reaches it, so its points
+  // stay where they are while the wire's current positions move.
+  auto mapped = SolverWrapperRegistry::instance().create(settings, RunSettings{});
+  settings.check_unused_keys();
+  Fluid fluid;
+  mapped->initialize();
+  mapped->adopt_interfaces(fluid.output_interface(), fluid.input_interface());
+  const TranslatingWire& wire = *TranslatingWire::last;
+  const Eigen::VectorXd z0 = wire.input_interface().parts()[0].model_part->coordinates.col(2);
+
+  int inside_total = 0, outside_total = 0;
+  for (int step = 1; step <= 30; ++step) {
+    mapped->initialize_step(step, step);  // rebuilt on the positions of the previous step
+    mapped->solve(fluid.output_interface());
+    const double shift = kStepTranslation * (step - 1);
+    for (Eigen::Index i = 0; i < z0.size(); ++i) {
+      const double z = z0(i) + shift;
+      const bool inside = z >= -1e-12 && z <= 1.0 + 1e-12;  // the ends belong to the fluid
+      // Linear interpolation of z^2 on a 0.005 grid: error at most h^2/8 ~ 3e-6.
+      const double expected = inside ? fluid_pressure(z) : 0.0;
+      EXPECT_NEAR(wire.received(i, 0), expected, 4e-6) << "step " << step << ", z " << z;
+      (inside ? inside_total : outside_total) += 1;
+    }
+  }
+  // The wire went from half outside on one end to half outside on the other.
+  EXPECT_GT(inside_total, 0);
+  EXPECT_GT(outside_total, 0);
+}
+
+TEST(MappedWrapper, MismatchedModelPartCountsAreReported) {
+  const Settings settings = Settings::load_string(
+      "type: mapped\nsolver_wrapper: {type: test_translating_wire}\n"
+      "input_mapper: {type: nearest}\noutput_mapper: {type: nearest}\n",
+      "case.yaml");
+  auto mapped = SolverWrapperRegistry::instance().create(settings, RunSettings{});
+  mapped->initialize();
+  const Interface empty;
+  EXPECT_THROW(mapped->adopt_interfaces(empty, empty), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace cocopp
