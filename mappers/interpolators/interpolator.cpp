@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "coupler/case/suggest.hpp"
+#include "mappers/interpolators/parallel.hpp"
 
 namespace cocopp {
 
@@ -81,10 +82,24 @@ void Interpolator::initialize(const Coordinates& source, const Coordinates& targ
   check_not_empty(target, "target");
   const Eigen::MatrixXd source_points = select_directions(source);
   const Eigen::MatrixXd target_points = select_directions(target);
-  source_search_ = std::make_unique<PointSearch>(source_points);
-  check_no_duplicates(*source_search_, source_points, source, "source");
-  target_search_ = std::make_unique<PointSearch>(target_points);
-  check_no_duplicates(*target_search_, target_points, target, "target");
+  // The two trees and their duplicate checks are independent: build them side by side.
+  auto index = [this](const Eigen::MatrixXd& points, const Coordinates& original,
+                      const char* side) {
+    auto search = std::make_unique<PointSearch>(points);
+    check_no_duplicates(*search, points, original, side);
+    return search;
+  };
+  std::unique_ptr<PointSearch> searches[2];
+  parallel_chunks(
+      std::size_t{2},
+      [&](std::size_t begin, std::size_t end) {
+        for (std::size_t side = begin; side < end; ++side)
+          searches[side] = side == 0 ? index(source_points, source, "source")
+                                     : index(target_points, target, "target");
+      },
+      static_cast<std::size_t>(source_points.rows() + target_points.rows()));
+  source_search_ = std::move(searches[0]);
+  target_search_ = std::move(searches[1]);
   check_boxes_overlap(source_points, target_points);
 
   quality_ = MappingQuality{};
@@ -227,24 +242,31 @@ RowMatrix Interpolator::map_transpose(const RowMatrix& target_values) const {
 
 RowMatrix Interpolator::apply(const RowMatrix& source_values) const {
   // One pass over the rows with all components at once: Eigen's product goes column by
-  // column, which reads the (randomly placed) source rows once per component.
+  // column, which reads the (randomly placed) source rows once per component. Rows are
+  // independent: large mappings are applied on all cores.
   const Eigen::Index components = source_values.cols();
-  RowMatrix result = RowMatrix::Zero(matrix_.rows(), components);
+  RowMatrix result(matrix_.rows(), components);
   const auto* outer = matrix_.outerIndexPtr();
   const auto* inner = matrix_.innerIndexPtr();
   const double* weights = matrix_.valuePtr();
   const double* in = source_values.data();
-  double* out = result.data();
   const Eigen::Index nonzeros = matrix_.nonZeros();
-  for (Eigen::Index row = 0; row < matrix_.rows(); ++row, out += components)
-    for (auto k = outer[row]; k < outer[row + 1]; ++k) {
-      // Source rows are scattered in memory: ask for the ones a few rows ahead now, so that
-      // the cache misses overlap instead of following each other.
-      if (k + kPrefetchDistance < nonzeros)
-        __builtin_prefetch(in + Eigen::Index{inner[k + kPrefetchDistance]} * components);
-      const double* from = in + Eigen::Index{inner[k]} * components;
-      for (Eigen::Index c = 0; c < components; ++c) out[c] += weights[k] * from[c];
-    }
+  parallel_chunks(
+      static_cast<std::size_t>(matrix_.rows()), [&](std::size_t begin, std::size_t end) {
+        double* out = result.data() + static_cast<Eigen::Index>(begin) * components;
+        for (auto row = static_cast<Eigen::Index>(begin); row < static_cast<Eigen::Index>(end);
+             ++row, out += components) {
+          for (Eigen::Index c = 0; c < components; ++c) out[c] = 0.0;
+          for (auto k = outer[row]; k < outer[row + 1]; ++k) {
+            // Source rows are scattered in memory: ask for the ones a few rows ahead now, so that
+            // the cache misses overlap instead of following each other.
+            if (k + kPrefetchDistance < nonzeros)
+              __builtin_prefetch(in + Eigen::Index{inner[k + kPrefetchDistance]} * components);
+            const double* from = in + Eigen::Index{inner[k]} * components;
+            for (Eigen::Index c = 0; c < components; ++c) out[c] += weights[k] * from[c];
+          }
+        }
+      });
   return result;
 }
 

@@ -15,6 +15,7 @@
 #include <numeric>
 
 #include "mappers/interpolators/interpolator.hpp"
+#include "mappers/interpolators/parallel.hpp"
 #include "mappers/interpolators/sparse_rows.hpp"
 
 namespace cocopp {
@@ -148,50 +149,27 @@ bool inside_triangle(double u, double v) {
   return u >= -kInsideTolerance && v >= -kInsideTolerance && u + v <= 1.0 + kInsideTolerance;
 }
 
-class Linear : public Interpolator {
+/// Finds the stencil of one target at a time. It holds the per-target work space (so a loop
+/// over many targets allocates once), so every thread of a build has its own.
+class StencilFinder {
  public:
-  using Interpolator::Interpolator;
+  /// `order` and `sorted` are the 1D sources sorted by coordinate (empty in 2D and 3D).
+  StencilFinder(const PointSearch& search, const std::vector<Eigen::Index>& order,
+                const std::vector<double>& sorted)
+      : search_(search), order_(order), sorted_(sorted) {}
 
- protected:
-  void build(const Eigen::MatrixXd& source, const Eigen::MatrixXd& target) override {
-    if (source.cols() == 1) sort_sources(source);
-    std::vector<Stencil> stencils(static_cast<std::size_t>(target.rows()));
-    Eigen::RowVectorXd query(target.cols());
-    for (const Eigen::Index t : target_order()) {
-      query = target.row(t);
-      stencils[static_cast<std::size_t>(t)] = source.cols() == 1   ? bracket(query(0))
-                                              : source.cols() == 2 ? on_curve(query.data())
-                                                                   : on_surface(query.data());
+  Stencil find(const double* x) {
+    switch (search_.dimension()) {
+      case 1:
+        return bracket(x[0]);
+      case 2:
+        return on_curve(x);
+      default:
+        return on_surface(x);
     }
-    assemble(stencils, source.rows());
   }
 
  private:
-  /// The sparse matrix and the quality report, in target order.
-  void assemble(const std::vector<Stencil>& stencils, Eigen::Index source_count) {
-    const auto target_count = static_cast<Eigen::Index>(stencils.size());
-    SparseRows rows(target_count, source_count, 3);
-    Eigen::VectorXd distances(target_count);
-    for (Eigen::Index t = 0; t < target_count; ++t) {
-      const Stencil& stencil = stencils[static_cast<std::size_t>(t)];
-      for (int k = 0; k < stencil.size; ++k) rows.add(stencil.sources[k], stencil.weights[k]);
-      rows.end_row();
-      distances(t) = stencil.distance;
-      if (stencil.fallback) ++quality_.fallbacks;
-    }
-    matrix_ = rows.finish();
-    record_distances(distances);
-  }
-
-  void sort_sources(const Eigen::MatrixXd& source) {
-    order_.resize(static_cast<std::size_t>(source.rows()));
-    std::iota(order_.begin(), order_.end(), Eigen::Index{0});
-    std::sort(order_.begin(), order_.end(),
-              [&](Eigen::Index a, Eigen::Index b) { return source(a, 0) < source(b, 0); });
-    sorted_.resize(order_.size());
-    for (std::size_t i = 0; i < order_.size(); ++i) sorted_[i] = source(order_[i], 0);
-  }
-
   /// 1D: the two source points on either side; outside the source range, the end point.
   Stencil bracket(double x) const {
     if (x <= sorted_.front())
@@ -211,8 +189,8 @@ class Linear : public Interpolator {
   /// 2D: the segment from the nearest source point to a neighbour that contains the target's
   /// projection, the closest such segment if several do; else the nearest source point.
   Stencil on_curve(const double* x) {
-    source_search().nearest(x, kCurveCandidates, found_);
-    geometry_.set(source_search(), found_, x);
+    search_.nearest(x, kCurveCandidates, found_);
+    geometry_.set(search_, found_, x);
     geometry_.use_all();
     Stencil best = Stencil::single(found_.indices[0], true);
     best_squared_distance_ = std::numeric_limits<double>::infinity();
@@ -227,8 +205,8 @@ class Linear : public Interpolator {
   /// ones may all lie on one side); else (fallback) the closest segment from the nearest point;
   /// else (fallback) the nearest point.
   Stencil on_surface(const double* x) {
-    source_search().nearest(x, kSurfaceCandidates, found_);
-    geometry_.set(source_search(), found_, x);
+    search_.nearest(x, kSurfaceCandidates, found_);
+    geometry_.set(search_, found_, x);
     Stencil best = Stencil::single(found_.indices[0], true);
     best_squared_distance_ = std::numeric_limits<double>::infinity();
     const int n = geometry_.count();
@@ -240,9 +218,9 @@ class Linear : public Interpolator {
       for (int j = i + 1; j < n; ++j)
         for (int k = j + 1; k < n; ++k) try_triangle(i, j, k, best);
     if (best.size == 3) return with_distance(best);
-    if (source_search().size() > kSurfaceCandidates) {
-      source_search().nearest(x, kWideCandidates, found_);
-      geometry_.set(source_search(), found_, x);
+    if (search_.size() > kSurfaceCandidates) {
+      search_.nearest(x, kWideCandidates, found_);
+      geometry_.set(search_, found_, x);
       geometry_.use_all();
       try_fan(best);
       if (best.size == 3) return with_distance(best);
@@ -279,7 +257,7 @@ class Linear : public Interpolator {
 
   /// Segments from the nearest candidate; a segment is a fallback on a surface, not on a curve.
   void try_segments(Stencil& best) {
-    const bool fallback = source_search().dimension() == 3;
+    const bool fallback = search_.dimension() == 3;
     for (int j = 1; j < geometry_.count(); ++j) {
       double t = 0.0, squared_distance = 0.0;
       if (!geometry_.project_on_segment(0, j, t, squared_distance)) continue;
@@ -295,13 +273,66 @@ class Linear : public Interpolator {
 
   Eigen::Index candidate(int i) const { return found_.indices[static_cast<std::size_t>(i)]; }
 
-  // 1D: source indices sorted by coordinate, and the sorted coordinates.
-  std::vector<Eigen::Index> order_;
-  std::vector<double> sorted_;
-  // 2D, 3D: per-target work space, reused to avoid allocations in the loop.
+  const PointSearch& search_;
+  const std::vector<Eigen::Index>& order_;
+  const std::vector<double>& sorted_;
   PointSearch::Neighbours found_;
   CandidateGeometry geometry_;
   double best_squared_distance_ = 0.0;
+};
+
+class Linear : public Interpolator {
+ public:
+  using Interpolator::Interpolator;
+
+ protected:
+  void build(const Eigen::MatrixXd& source, const Eigen::MatrixXd& target) override {
+    if (source.cols() == 1) sort_sources(source);
+    std::vector<Stencil> stencils(static_cast<std::size_t>(target.rows()));
+    const std::vector<Eigen::Index>& order = target_order();
+    // Targets in the tree's order, split into contiguous chunks: each thread stays in one
+    // region of space (and of the cache).
+    parallel_chunks(order.size(), [&](std::size_t begin, std::size_t end) {
+      StencilFinder finder(source_search(), order_, sorted_);
+      Eigen::RowVectorXd query(target.cols());
+      for (std::size_t i = begin; i < end; ++i) {
+        const Eigen::Index t = order[i];
+        query = target.row(t);
+        stencils[static_cast<std::size_t>(t)] = finder.find(query.data());
+      }
+    });
+    assemble(stencils, source.rows());
+  }
+
+ private:
+  /// The sparse matrix and the quality report, in target order.
+  void assemble(const std::vector<Stencil>& stencils, Eigen::Index source_count) {
+    const auto target_count = static_cast<Eigen::Index>(stencils.size());
+    SparseRows rows(target_count, source_count, 3);
+    Eigen::VectorXd distances(target_count);
+    for (Eigen::Index t = 0; t < target_count; ++t) {
+      const Stencil& stencil = stencils[static_cast<std::size_t>(t)];
+      for (int k = 0; k < stencil.size; ++k) rows.add(stencil.sources[k], stencil.weights[k]);
+      rows.end_row();
+      distances(t) = stencil.distance;
+      if (stencil.fallback) ++quality_.fallbacks;
+    }
+    matrix_ = rows.finish();
+    record_distances(distances);
+  }
+
+  void sort_sources(const Eigen::MatrixXd& source) {
+    order_.resize(static_cast<std::size_t>(source.rows()));
+    std::iota(order_.begin(), order_.end(), Eigen::Index{0});
+    std::sort(order_.begin(), order_.end(),
+              [&](Eigen::Index a, Eigen::Index b) { return source(a, 0) < source(b, 0); });
+    sorted_.resize(order_.size());
+    for (std::size_t i = 0; i < order_.size(); ++i) sorted_[i] = source(order_[i], 0);
+  }
+
+  // 1D: source indices sorted by coordinate, and the sorted coordinates.
+  std::vector<Eigen::Index> order_;
+  std::vector<double> sorted_;
 };
 
 }  // namespace
