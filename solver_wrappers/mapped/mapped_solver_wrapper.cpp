@@ -26,7 +26,8 @@ class MappedSolverWrapper : public SolverWrapper {
         output_settings_(settings.child("output_mapper")),
         rebuild_(settings.get_choice("rebuild", "never", {"never", "time_step", "iteration"})),
         current_(settings.get_choice("coordinates", "initial", {"initial", "current"}) ==
-                 "current") {
+                 "current"),
+        report_(settings.get<bool>("report_quality", false)) {
     // Build one mapper now so that `cocopp check` validates the mapper settings.
     Mapper{input_settings_};
     Mapper{output_settings_};
@@ -155,7 +156,22 @@ class MappedSolverWrapper : public SolverWrapper {
                                     coordinates(pair.inner_input_part, inner_in, inner_out));
       pair.output_mapper->initialize(coordinates(pair.inner_output_part, inner_out, inner_in),
                                      coordinates(pair.outer_output_part, output_, input_));
+      if (report_) {
+        report("input", pair.outer_input_part, pair.inner_input_part, *pair.input_mapper);
+        report("output", pair.inner_output_part, pair.outer_output_part, *pair.output_mapper);
+      }
     }
+  }
+
+  /// The mapping quality report: distance from each target to its source stencil.
+  void report(const char* which, const std::string& from, const std::string& to,
+              const Mapper& mapper) const {
+    const MappingQuality& q = mapper.quality();
+    fmt::print(
+        "  mapping        : {} {} mapper, {} -> {}: distance to the stencil min {:.3g}, mean "
+        "{:.3g}, max {:.3g}; {} fallbacks, {} unmatched\n",
+        name_, which, from, to, q.min_distance, q.mean_distance, q.max_distance, q.fallbacks,
+        q.unmatched);
   }
 
   void map_output(const Interface& inner_output) {
@@ -170,6 +186,7 @@ class MappedSolverWrapper : public SolverWrapper {
   Settings input_settings_, output_settings_;
   std::string rebuild_;
   bool current_;
+  bool report_;
   Interface input_, output_;
   std::vector<Pair> pairs_;
 };
