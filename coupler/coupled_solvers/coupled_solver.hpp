@@ -35,7 +35,8 @@ class CoupledSolver {
   void initialize(SolverWrapper& first, SolverWrapper& second);
   /// Advance, iterate to convergence, commit and write one time step.
   StepRecord solve_step(int step, double time);
-  /// The interfaces with the converged values of the last step: x (displacement) and y (loads).
+  /// The interfaces x (displacement) and y (loads): during a step the values of the current
+  /// coupling iteration, after it the converged values of the step.
   const Interface& x() const { return x_; }
   const Interface& y() const { return y_; }
   /// "iqni (omega 0.05, model ls q 10), predictor linear, until (...)": for the run header.

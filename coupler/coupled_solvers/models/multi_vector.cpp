@@ -1,0 +1,219 @@
+// `mv` (IQN-MVJ) and `mvmf`: the multi-vector models (Lindner et al. 2015; CoCoNuT's mv and
+// mvmf), which carry an approximation of the inverse Jacobian from time step to time step.
+//
+// Within a step, V and W hold the differences of r and x~ between consecutive iterations
+// (newest first, filtered as in `ls`), and the estimate is
+//   J = J_prev + (W - J_prev V) V^+,   V^+ = (V^T V)^-1 V^T = R^-1 Q^T,
+// the smallest change of J_prev (in the Frobenius norm) with J V = W. So
+//   predict(dr) = J dr = W c + J_prev (dr - V c),   c = V^+ dr,
+// and when the step ends J_prev <- J. J_prev starts at 0: the first step is IQN-ILS.
+//
+// `mv` stores J_prev as a dense n x n matrix (O(n^2) per prediction and memory). `mvmf` never
+// forms it: it applies the recursion above to the V, W and QR factorization kept from each of
+// the last q steps (J_prev of the oldest kept step is 0), O(n k) per kept step.
+#include <deque>
+
+#include "coupler/coupled_solvers/models/model.hpp"
+#include "coupler/coupled_solvers/models/qr_factorization.hpp"
+
+namespace cocopp {
+namespace {
+
+/// The secant columns of one time step, newest first, with the QR factorization of V.
+class StepColumns {
+ public:
+  int size() const { return static_cast<int>(v_.size()); }
+  bool empty() const { return v_.empty(); }
+  Eigen::Index rows() const { return v_.empty() ? 0 : v_.front().size(); }
+
+  /// Add a column pair in front, then drop the insignificant columns.
+  void insert(Eigen::VectorXd v, Eigen::VectorXd w, double min_significant) {
+    v_.push_front(std::move(v));
+    w_.push_front(std::move(w));
+    if (!qr_.insert_front(v_.front())) refactorize();
+    filter(min_significant);
+  }
+
+  /// c = V^+ y.
+  Eigen::VectorXd coefficients(const Eigen::VectorXd& y) const { return qr_.solve(y); }
+
+  /// One level of the recursion: returns W c for c = V^+ y and leaves y - V c, the part of y
+  /// this step's columns do not explain, in y (for the previous steps' Jacobian).
+  Eigen::VectorXd peel(Eigen::VectorXd& y) const {
+    Eigen::VectorXd wc = Eigen::VectorXd::Zero(y.size());
+    if (empty()) return wc;
+    const Eigen::VectorXd c = coefficients(y);
+    for (int i = 0; i < size(); ++i) {
+      wc += c(i) * w_[std::size_t(i)];
+      y -= c(i) * v_[std::size_t(i)];
+    }
+    return wc;
+  }
+
+  Eigen::MatrixXd v_matrix() const { return as_matrix(v_); }
+  Eigen::MatrixXd w_matrix() const { return as_matrix(w_); }
+
+ private:
+  static Eigen::MatrixXd as_matrix(const std::deque<Eigen::VectorXd>& columns) {
+    Eigen::MatrixXd m(columns.front().size(), Eigen::Index(columns.size()));
+    for (std::size_t i = 0; i < columns.size(); ++i) m.col(Eigen::Index(i)) = columns[i];
+    return m;
+  }
+
+  void erase(std::size_t i) {
+    v_.erase(v_.begin() + std::ptrdiff_t(i));
+    w_.erase(w_.begin() + std::ptrdiff_t(i));
+  }
+
+  /// Remove columns whose |R_ii| is below `min_significant`, newest first (as `ls` does):
+  /// removing one changes only the R_ii of the older ones.
+  void filter(double min_significant) {
+    for (Eigen::Index i = 0; i < qr_.columns();) {
+      const double r_ii = qr_.diagonal(i);
+      if (r_ii > 0.0 && r_ii >= min_significant) {
+        ++i;
+        continue;
+      }
+      qr_.remove(i);
+      erase(std::size_t(i));
+    }
+  }
+
+  /// Factorize anew, newest first, when an update would be inaccurate (the new column is
+  /// numerically in the span of the others: a zero column, or more columns than rows). A
+  /// column dependent on newer ones is dropped here.
+  void refactorize() {
+    qr_.clear();
+    for (std::size_t i = 0; i < v_.size();) {
+      if (qr_.append(v_[i]))
+        ++i;
+      else
+        erase(i);
+    }
+  }
+
+  std::deque<Eigen::VectorXd> v_;  ///< residual differences
+  std::deque<Eigen::VectorXd> w_;  ///< solver output differences
+  QrFactorization qr_;
+};
+
+/// The part shared by `mv` and `mvmf`: the current step's columns and the prediction; the
+/// two differ only in how they store J_prev.
+class MultiVector : public Model {
+ public:
+  explicit MultiVector(const Settings& s)
+      : min_significant_(s.get_in_range("min_significant", 1e-12, Range::non_negative())) {}
+
+  void initialize_step() override {
+    has_reference_ = false;
+    current_ = StepColumns();
+  }
+
+  void add(const Eigen::VectorXd& r, const Eigen::VectorXd& xt) override {
+    if (has_reference_) current_.insert(r - r_ref_, xt - xt_ref_, min_significant_);
+    r_ref_ = r;
+    xt_ref_ = xt;
+    has_reference_ = true;
+  }
+
+  /// The carried Jacobian is secant information too: the first iteration of a step already
+  /// uses it instead of relaxing.
+  bool is_ready() const override { return columns() > 0; }
+
+  Eigen::VectorXd predict(const Eigen::VectorXd& dr) override {
+    Eigen::VectorXd rest = dr;
+    const Eigen::VectorXd dxt = current_.peel(rest);
+    return dxt + apply_previous(rest);
+  }
+
+  void finalize_step() override {
+    // A step that converged in its first iteration has no columns: J_prev stays as it is.
+    if (!current_.empty()) keep(std::move(current_));
+    current_ = StepColumns();
+  }
+
+  /// The current step's columns plus those of previous steps still held in J_prev.
+  int columns() const override { return current_.size() + previous_columns(); }
+
+ protected:
+  /// J_prev y.
+  virtual Eigen::VectorXd apply_previous(const Eigen::VectorXd& y) const = 0;
+  /// J_prev <- J_prev + (W - J_prev V) V^+ for a finished step's (non-empty) columns.
+  virtual void keep(StepColumns step) = 0;
+  virtual int previous_columns() const = 0;
+
+ private:
+  double min_significant_;
+  StepColumns current_;
+  Eigen::VectorXd r_ref_, xt_ref_;
+  bool has_reference_ = false;
+};
+
+/// `mv`: J_prev as a dense matrix.
+class MultiVectorDense : public MultiVector {
+ public:
+  explicit MultiVectorDense(const Settings& s) : MultiVector(s) {}
+
+ protected:
+  Eigen::VectorXd apply_previous(const Eigen::VectorXd& y) const override {
+    if (jacobian_.size() == 0) return Eigen::VectorXd::Zero(y.size());
+    return jacobian_ * y;
+  }
+
+  void keep(StepColumns step) override {
+    const Eigen::Index n = step.rows();
+    if (jacobian_.size() == 0) jacobian_ = Eigen::MatrixXd::Zero(n, n);
+    // V^+ column by column from the step's QR factorization, the one predict() used: then
+    // mv and mvmf differ by round-off only.
+    Eigen::MatrixXd pseudo_inverse(step.size(), n);
+    for (Eigen::Index j = 0; j < n; ++j)
+      pseudo_inverse.col(j) = step.coefficients(Eigen::VectorXd::Unit(n, j));
+    const Eigen::MatrixXd mismatch = step.w_matrix() - jacobian_ * step.v_matrix();
+    jacobian_.noalias() += mismatch * pseudo_inverse;
+    columns_kept_ += step.size();
+  }
+
+  int previous_columns() const override { return columns_kept_; }
+
+ private:
+  Eigen::MatrixXd jacobian_;  ///< J_prev; empty until a step has added columns
+  int columns_kept_ = 0;      ///< all columns of previous steps: J_prev never forgets
+};
+
+/// `mvmf`: J_prev as the recursion over the columns of the last q steps.
+class MultiVectorMatrixFree : public MultiVector {
+ public:
+  explicit MultiVectorMatrixFree(const Settings& s)
+      : MultiVector(s), reused_steps_(s.get_int_in_range("q", 100, 0)) {}
+
+ protected:
+  Eigen::VectorXd apply_previous(const Eigen::VectorXd& y) const override {
+    Eigen::VectorXd rest = y;
+    Eigen::VectorXd result = Eigen::VectorXd::Zero(y.size());
+    for (const StepColumns& step : steps_) result += step.peel(rest);  // newest first
+    return result;
+  }
+
+  void keep(StepColumns step) override {
+    steps_.push_front(std::move(step));
+    // Dropping the oldest step sets its J_prev, the start of the recursion, to 0.
+    while (steps_.size() > std::size_t(reused_steps_)) steps_.pop_back();
+  }
+
+  int previous_columns() const override {
+    int total = 0;
+    for (const StepColumns& step : steps_) total += step.size();
+    return total;
+  }
+
+ private:
+  int reused_steps_;
+  std::deque<StepColumns> steps_;  ///< newest first; steps without columns are not kept
+};
+
+}  // namespace
+
+COCOPP_REGISTER(ModelRegistry, "mv", MultiVectorDense)
+COCOPP_REGISTER(ModelRegistry, "mvmf", MultiVectorMatrixFree)
+
+}  // namespace cocopp
