@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "coupler/app/bench.hpp"
 #include "coupler/app/run.hpp"
 #include "coupler/case/suggest.hpp"
 #include "coupler/convergence/convergence_criterion.hpp"
@@ -60,11 +61,33 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::ExistingFile);
 
+  std::string bench_file;
+  cocopp::BenchOptions bench_options;
+  auto* bench = app.add_subcommand(
+      "bench",
+      "Compare coupling algorithms on one case: run a base case with every variant of a "
+      "benchmark file, and a tightly converged reference (or take a given results file), then "
+      "print and write (bench.csv, bench.json, bench.png) iterations, run time and the error "
+      "against the reference. Benchmark file (YAML/JSON): base_case: <case file>; "
+      "output_directory: <dir> (default bench_results); reference: {results: <file.h5>} or "
+      "{tolerance: 1e-10}; settings: {...} (merged into every run); variants: [{name: ..., "
+      "coupled_solver: {...}, settings: {...}}, ...]. See docs/bench.md. Exit code 0: all runs "
+      "made (diverging variants included); 1: stopped; 2: invalid file.");
+  bench->add_option("bench", bench_file, "benchmark file (.yaml, .yml or .json)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  bool no_plot = false;
+  bench->add_flag("--no-plot", no_plot, "do not draw bench.png");
+
   app.add_subcommand("components", "List the component types a case file can name.");
 
   CLI11_PARSE(app, argc, argv);
   if (*run) return cocopp::run_case(case_file, options);
   if (*check) return cocopp::check_case(case_file);
+  if (*bench) {
+    bench_options.plot = !no_plot;
+    return cocopp::run_bench(bench_file, bench_options);
+  }
   print_components();
   return 0;
 }

@@ -1,0 +1,57 @@
+// Every coupled solver on the flow-structure tube (100 steps): the iteration counts are
+// regression values with a tolerance of zero iterations, so that any change to an algorithm's
+// behaviour is noticed and explained (update the value in the same commit, saying why).
+#include <gtest/gtest.h>
+
+#include "run_helpers.hpp"
+
+using namespace cocopp::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Algorithm {
+  const char* name;
+  const char* coupled_solver;  ///< the type and its keys, YAML flow style inside the mapping
+  int total_iterations;        ///< regression value (100 steps)
+};
+
+const Algorithm kAlgorithms[] = {
+    {"iqni_ls_q10", "type: iqni, omega: 0.05, model: {type: ls, q: 10}", 416},
+    {"iqni_ls_q0", "type: iqni, omega: 0.05, model: {type: ls, q: 0}", 1227},
+    {"iqni_mv", "type: iqni, omega: 0.05, model: {type: mv}", 429},
+    {"iqni_mvmf", "type: iqni, omega: 0.05, model: {type: mvmf, q: 100}", 429},
+    {"ibqn", "type: ibqn, omega: 0.05, model_f: {type: ls, q: 10}, model_s: {type: ls, q: 10}",
+     426},
+    {"aitken", "type: aitken, omega_max: 0.05", 3894},
+};
+
+class CouplingAlgorithms : public ::testing::TestWithParam<Algorithm> {};
+
+}  // namespace
+
+TEST_P(CouplingAlgorithms, ConvergeOnTheFlowStructureTubeWithKnownIterationCounts) {
+  const Algorithm& algorithm = GetParam();
+  const fs::path dir = copy_example("tube/flow_structure", algorithm.name);
+  write_text(dir / "case.yaml", std::string(R"(settings: {delta_t: 1.0e-4, number_of_timesteps: 100}
+coupled_solver: {)") + algorithm.coupled_solver +
+                                    R"(,
+  predictor: {type: linear},
+  convergence_criterion: {type: or, criteria: [{type: relative_norm, tolerance: 1.0e-6},
+                                               {type: iteration_limit, maximum: 200}]}}
+solver_wrappers:
+  - {type: tube_flow, name: flow, working_directory: flow}
+  - {type: tube_structure, name: structure, working_directory: structure}
+)");
+  const CommandResult run = run_cocopp("run -q " + (dir / "case.yaml").string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto summary = read_json(dir / "results" / "case.summary.json");
+  EXPECT_TRUE(summary["unconverged_steps"].empty()) << summary["unconverged_steps"];
+  int total = 0;
+  for (const auto& iterations : summary["iterations_per_step"]) total += iterations.get<int>();
+  EXPECT_EQ(total, algorithm.total_iterations);
+  fs::remove_all(dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(Tube, CouplingAlgorithms, ::testing::ValuesIn(kAlgorithms),
+                         [](const auto& info) { return std::string(info.param.name); });
