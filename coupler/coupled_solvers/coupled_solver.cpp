@@ -21,8 +21,9 @@ CoupledSolver::CoupledSolver(const Settings& settings)
       criterion_(
           ConvergenceCriterionRegistry::instance().create(settings.child("convergence_criterion"))),
       divergence_factor_(
-          settings.child_or_empty("divergence").get_in_range("factor", 1e6, Range::at_least(1.0))) {
-}
+          settings.child_or_empty("divergence").get_in_range("factor", 1e6, Range::at_least(1.0))),
+      growth_iterations_(
+          settings.child_or_empty("divergence").get_int_in_range("growth_iterations", 10, 0)) {}
 
 void CoupledSolver::initialize(SolverWrapper& first, SolverWrapper& second) {
   solvers_ = {&first, &second};
@@ -155,12 +156,25 @@ void CoupledSolver::check_divergence(const std::vector<double>& norms, int step,
                                      double time) const {
   const double first = norms.front();
   const double last = norms.back();
-  if (std::isfinite(last) && (first == 0.0 || last <= divergence_factor_ * first)) return;
+  if (!std::isfinite(last) || (first > 0.0 && last > divergence_factor_ * first))
+    throw DivergenceError(fmt::format(
+        "the coupling diverged in time step {} (t = {:g} s): the residual norm grew from {:.3e} "
+        "in iteration 1 to {:.3e} in iteration {} (more than coupled_solver.divergence.factor = "
+        "{:g} times). {}",
+        step, time, first, last, norms.size(), divergence_factor_, divergence_advice()));
+  // A slow but steady growth never reaches the factor before the iteration limit: catch it by
+  // its persistence (converging methods grow at most a few iterations in a row).
+  const auto n = static_cast<std::size_t>(growth_iterations_);
+  if (n == 0 || norms.size() <= n) return;
+  for (std::size_t i = norms.size() - n; i < norms.size(); ++i)
+    if (!(norms[i] > norms[i - 1])) return;
+  // A stalled iteration creeping up at round-off level is not diverging: ask for a doubling.
+  if (!(last > 2.0 * norms[norms.size() - 1 - n])) return;
   throw DivergenceError(fmt::format(
-      "the coupling diverged in time step {} (t = {:g} s): the residual norm grew from {:.3e} "
-      "in iteration 1 to {:.3e} in iteration {} (more than coupled_solver.divergence.factor = "
-      "{:g} times). {}",
-      step, time, first, last, norms.size(), divergence_factor_, divergence_advice()));
+      "the coupling diverged in time step {} (t = {:g} s): the residual norm grew in each of the "
+      "last {} iterations, more than doubling, to {:.3e} in iteration {} "
+      "(coupled_solver.divergence.growth_iterations = {}). {}",
+      step, time, n, last, norms.size(), n, divergence_advice()));
 }
 
 std::string CoupledSolver::divergence_advice() const {

@@ -77,6 +77,7 @@ class CoupledSolver {
   std::unique_ptr<Predictor> predictor_;
   std::unique_ptr<ConvergenceCriterion> criterion_;
   double divergence_factor_;
+  int growth_iterations_;  ///< 0: off
   std::array<SolverWrapper*, 2> solvers_{};
   Interface x_, y_;  ///< layouts of the first solver's input and output
   std::array<double, 2> solver_time_step_{};

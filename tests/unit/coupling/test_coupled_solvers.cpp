@@ -144,3 +144,25 @@ TEST(CoupledSolvers, TimingsAddUp) {
               record.solver_times[0] + record.solver_times[1] + record.coupler_time, 1e-12);
   EXPECT_GE(record.coupler_time, 0.0);
 }
+
+TEST(CoupledSolvers, SteadyResidualGrowthIsDetected) {
+  // Relaxation with omega 0.9 on eigenvalues -1.5 .. -1.4 multiplies the error by about -1.2
+  // per iteration: far from the growth factor within the iteration limit, but persistent.
+  Problem problem(4, -1.5, -1.4);
+  const std::string yaml =
+      "type: relaxation\nomega: 0.9\ndivergence: {factor: 1e12, growth_iterations: 10}\n"
+      "predictor: {type: constant}\n"
+      "convergence_criterion: {type: iteration_limit, maximum: 100}\n";
+  auto coupled = CoupledSolverRegistry::instance().create(Settings::load_string(yaml, "case.yaml"));
+  coupled->initialize(*problem.flow, *problem.structure);
+  try {
+    coupled->solve_step(1, 0.1);
+    FAIL() << "no divergence reported";
+  } catch (const DivergenceError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("grew in each of the last 10 iterations, more than doubling"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("in iteration 11"), std::string::npos) << message;
+  }
+}
