@@ -24,12 +24,6 @@ using protocol::MessageType;
 /// How long a solver waits for the coupler to open its end of the channel.
 constexpr double kConnectTimeoutSeconds = 60.0;
 
-bool asks_for_help(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i)
-    if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) return true;
-  return false;
-}
-
 void print_help(const std::string& program) {
   std::cout << program
             << " is a cocopp solver: the cocopp coupler starts it and drives it time step by\n"
@@ -187,9 +181,15 @@ class Server {
 
 }  // namespace
 
+bool wants_help(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) return true;
+  return false;
+}
+
 int serve(Solver& solver, int argc, char** argv) {
   const std::string program = argc > 0 ? argv[0] : "this solver";
-  if (asks_for_help(argc, argv)) {
+  if (wants_help(argc, argv)) {
     print_help(program);
     return 0;
   }

@@ -49,6 +49,9 @@ class Solver {
   virtual void finalize() {}
 };
 
+/// Whether the command line asks for help (--help or -h): solvers print their usage then.
+bool wants_help(int argc, char** argv);
+
 /// Serve the coupler's requests until it says stop. Returns 0 on a normal stop, 1 on errors.
 int serve(Solver& solver, int argc, char** argv);
 

@@ -92,7 +92,7 @@ double InletParameters::value(int step, double delta_t) const {
 }
 
 double TubeFlowParameters::wave_speed_squared() const {
-  return e * h / (rho_f * geometry.diameter);
+  return moens_korteweg_speed_squared(e, h, rho_f, geometry.diameter);
 }
 
 TubeFlowParameters TubeFlowParameters::read(const Settings& input) {
@@ -269,30 +269,37 @@ Eigen::VectorXd TubeFlow::residual(const Eigen::VectorXd& x) const {
   return f;
 }
 
+TubeFlow::CellStencil TubeFlow::cell_stencil(const Eigen::VectorXd& x, int i) const {
+  CellStencil c;
+  c.u_left = x[velocity_index(i - 1)];
+  c.u_centre = x[velocity_index(i)];
+  c.u_right = x[velocity_index(i + 1)];
+  c.area_left = areas_[i] + areas_[i - 1];
+  c.area_right = areas_[i] + areas_[i + 1];
+  // Upwind velocities of the momentum fluxes.
+  c.s = c.u_centre > 0.0 ? 1.0 : 0.0;
+  c.upwind_left = c.s * c.u_left + (1.0 - c.s) * c.u_centre;
+  c.upwind_right = c.s * c.u_centre + (1.0 - c.s) * c.u_right;
+  return c;
+}
+
 void TubeFlow::add_cell_rows(const Eigen::VectorXd& x, Eigen::VectorXd& f) const {
   const Eigen::VectorXd& a = areas_;
   const Eigen::VectorXd& a_old = old_areas_;
   const double inertia = dz_ / delta_t_;
   for (int i = 1; i <= cells_; ++i) {
-    const double u_left = x[velocity_index(i - 1)];
-    const double u_centre = x[velocity_index(i)];
-    const double u_right = x[velocity_index(i + 1)];
+    const CellStencil c = cell_stencil(x, i);
     const double p_left = x[pressure_index(i - 1)];
     const double p_centre = x[pressure_index(i)];
     const double p_right = x[pressure_index(i + 1)];
-    const double area_right = a[i] + a[i + 1];
-    const double area_left = a[i] + a[i - 1];
-    // Upwind velocities of the momentum fluxes.
-    const double s = u_centre > 0.0 ? 1.0 : 0.0;
-    const double upwind_right = s * u_centre + (1.0 - s) * u_right;
-    const double upwind_left = s * u_left + (1.0 - s) * u_centre;
 
-    f[2 * i] = inertia * (a[i] - a_old[i]) + (u_centre + u_right) * area_right / 4.0 -
-               (u_centre + u_left) * area_left / 4.0 - alpha_ * (p_right - 2.0 * p_centre + p_left);
-    f[2 * i + 1] = inertia * (u_centre * a[i] - old_unknowns_[velocity_index(i)] * a_old[i]) +
-                   upwind_right * (u_centre + u_right) * area_right / 4.0 -
-                   upwind_left * (u_centre + u_left) * area_left / 4.0 +
-                   ((p_right - p_centre) * area_right + (p_centre - p_left) * area_left) / 4.0;
+    f[2 * i] = inertia * (a[i] - a_old[i]) + (c.u_centre + c.u_right) * c.area_right / 4.0 -
+               (c.u_centre + c.u_left) * c.area_left / 4.0 -
+               alpha_ * (p_right - 2.0 * p_centre + p_left);
+    f[2 * i + 1] = inertia * (c.u_centre * a[i] - old_unknowns_[velocity_index(i)] * a_old[i]) +
+                   c.upwind_right * (c.u_centre + c.u_right) * c.area_right / 4.0 -
+                   c.upwind_left * (c.u_centre + c.u_left) * c.area_left / 4.0 +
+                   ((p_right - p_centre) * c.area_right + (p_centre - p_left) * c.area_left) / 4.0;
   }
 }
 
@@ -349,14 +356,10 @@ void TubeFlow::add_cell_jacobian(const Eigen::VectorXd& x, BandedMatrix& j) cons
   const Eigen::VectorXd& a = areas_;
   const double inertia = dz_ / delta_t_;
   for (int i = 1; i <= cells_; ++i) {
-    const double u_left = x[velocity_index(i - 1)];
-    const double u_centre = x[velocity_index(i)];
-    const double u_right = x[velocity_index(i + 1)];
-    const double area_right = a[i] + a[i + 1];
-    const double area_left = a[i] + a[i - 1];
-    const double s = u_centre > 0.0 ? 1.0 : 0.0;
-    const double upwind_right = s * u_centre + (1.0 - s) * u_right;
-    const double upwind_left = s * u_left + (1.0 - s) * u_centre;
+    const CellStencil c = cell_stencil(x, i);
+    const double u_left = c.u_left, u_centre = c.u_centre, u_right = c.u_right;
+    const double area_left = c.area_left, area_right = c.area_right, s = c.s;
+    const double upwind_left = c.upwind_left, upwind_right = c.upwind_right;
     const int ul = velocity_index(i - 1), uc = velocity_index(i), ur = velocity_index(i + 1);
     const int pl = pressure_index(i - 1), pc = pressure_index(i), pr = pressure_index(i + 1);
 

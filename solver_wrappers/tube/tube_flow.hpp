@@ -100,6 +100,12 @@ class TubeFlow {
   void impose_inlet_value(Eigen::VectorXd& unknowns) const;
   double total_pressure_head(const Eigen::VectorXd& unknowns) const;
   double characteristic_root() const;
+  /// Neighbour velocities, face areas and upwind values of cell i, shared by the residual
+  /// rows and their Jacobian.
+  struct CellStencil {
+    double u_left, u_centre, u_right, area_left, area_right, s, upwind_left, upwind_right;
+  };
+  CellStencil cell_stencil(const Eigen::VectorXd& x, int i) const;
   void add_cell_rows(const Eigen::VectorXd& x, Eigen::VectorXd& f) const;
   void add_cell_jacobian(const Eigen::VectorXd& x, BandedMatrix& jacobian) const;
 

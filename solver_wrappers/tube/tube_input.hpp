@@ -47,4 +47,9 @@ Parameters load_input_file(const std::string& file) {
   return parameters;
 }
 
+/// Moens-Korteweg wave speed squared in kinematic units, E h / (rho_f d): flow and ring model.
+inline double moens_korteweg_speed_squared(double e, double h, double rho_f, double diameter) {
+  return e * h / (rho_f * diameter);
+}
+
 }  // namespace cocopp::tube

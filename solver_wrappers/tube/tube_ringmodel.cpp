@@ -10,7 +10,7 @@
 namespace cocopp::tube {
 
 double TubeRingmodelParameters::wave_speed_squared() const {
-  return e * h / (rho_f * geometry.diameter);
+  return moens_korteweg_speed_squared(e, h, rho_f, geometry.diameter);
 }
 
 TubeRingmodelParameters TubeRingmodelParameters::read(const Settings& input) {

@@ -93,7 +93,7 @@ class TubeSolver : public sdk::Solver {
 template <class Model, class Side, class Make>
 int run_tube_solver(int argc, char** argv, const char* usage, const std::string& default_input,
                     Make make) {
-  if (wants_help(argc, argv)) {
+  if (sdk::wants_help(argc, argv)) {
     std::cout << usage;
     return 0;
   }

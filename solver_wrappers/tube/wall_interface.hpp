@@ -1,9 +1,8 @@
 #pragma once
 // What the three tube solver executables share: the `wall` model part they present to the
 // coupler, the conversion between interface vectors and the models' per-cell values, and the
-// command line (input file argument, --help).
+// command line (the input file argument).
 #include <Eigen/Dense>
-#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -45,13 +44,6 @@ inline Eigen::VectorXd radial_component(const std::vector<double>& input, int ce
   Eigen::VectorXd radial(cells);
   for (int i = 0; i < cells; ++i) radial[i] = input[offset + 3 * i + 1];
   return radial;
-}
-
-inline bool wants_help(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) return true;
-  }
-  return false;
 }
 
 /// argv[1] if given (and not an option), else the default file name in the working directory.
