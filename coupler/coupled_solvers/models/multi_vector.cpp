@@ -14,103 +14,40 @@
 #include <deque>
 
 #include "coupler/coupled_solvers/models/model.hpp"
-#include "coupler/coupled_solvers/models/qr_factorization.hpp"
+#include "coupler/coupled_solvers/models/secant_columns.hpp"
 
 namespace cocopp {
 namespace {
 
-/// The secant columns of one time step, newest first, with the QR factorization of V.
-class StepColumns {
+/// The secant columns of one time step (newest first, filtered as in `ls`) and one level of
+/// the recursion.
+class StepColumns : public SecantColumns {
  public:
-  int size() const { return static_cast<int>(v_.size()); }
-  bool empty() const { return v_.empty(); }
-  Eigen::Index rows() const { return v_.empty() ? 0 : v_.front().size(); }
+  using SecantColumns::SecantColumns;
 
-  /// Add a column pair in front, then drop the insignificant columns.
-  void insert(Eigen::VectorXd v, Eigen::VectorXd w, double min_significant) {
-    v_.push_front(std::move(v));
-    w_.push_front(std::move(w));
-    if (!qr_.insert_front(v_.front())) refactorize();
-    filter(min_significant);
-  }
-
-  /// c = V^+ y.
-  Eigen::VectorXd coefficients(const Eigen::VectorXd& y) const { return qr_.solve(y); }
-
-  /// One level of the recursion: returns W c for c = V^+ y and leaves y - V c, the part of y
-  /// this step's columns do not explain, in y (for the previous steps' Jacobian).
+  /// Returns W c for c = V^+ y and leaves y - V c, the part of y this step's columns do not
+  /// explain, in y (for the previous steps' Jacobian).
   Eigen::VectorXd peel(Eigen::VectorXd& y) const {
-    Eigen::VectorXd wc = Eigen::VectorXd::Zero(y.size());
-    if (empty()) return wc;
+    if (empty()) return Eigen::VectorXd::Zero(y.size());
     const Eigen::VectorXd c = coefficients(y);
-    for (int i = 0; i < size(); ++i) {
-      wc += c(i) * w_[std::size_t(i)];
-      y -= c(i) * v_[std::size_t(i)];
-    }
-    return wc;
+    y -= combine_v(c);
+    return combine_w(c);
   }
-
-  Eigen::MatrixXd v_matrix() const { return as_matrix(v_); }
-  Eigen::MatrixXd w_matrix() const { return as_matrix(w_); }
-
- private:
-  static Eigen::MatrixXd as_matrix(const std::deque<Eigen::VectorXd>& columns) {
-    Eigen::MatrixXd m(columns.front().size(), Eigen::Index(columns.size()));
-    for (std::size_t i = 0; i < columns.size(); ++i) m.col(Eigen::Index(i)) = columns[i];
-    return m;
-  }
-
-  void erase(std::size_t i) {
-    v_.erase(v_.begin() + std::ptrdiff_t(i));
-    w_.erase(w_.begin() + std::ptrdiff_t(i));
-  }
-
-  /// Remove columns whose |R_ii| is below `min_significant`, newest first (as `ls` does):
-  /// removing one changes only the R_ii of the older ones.
-  void filter(double min_significant) {
-    for (Eigen::Index i = 0; i < qr_.columns();) {
-      const double r_ii = qr_.diagonal(i);
-      if (r_ii > 0.0 && r_ii >= min_significant) {
-        ++i;
-        continue;
-      }
-      qr_.remove(i);
-      erase(std::size_t(i));
-    }
-  }
-
-  /// Factorize anew, newest first, when an update would be inaccurate (the new column is
-  /// numerically in the span of the others: a zero column, or more columns than rows). A
-  /// column dependent on newer ones is dropped here.
-  void refactorize() {
-    qr_.clear();
-    for (std::size_t i = 0; i < v_.size();) {
-      if (qr_.append(v_[i]))
-        ++i;
-      else
-        erase(i);
-    }
-  }
-
-  std::deque<Eigen::VectorXd> v_;  ///< residual differences
-  std::deque<Eigen::VectorXd> w_;  ///< solver output differences
-  QrFactorization qr_;
 };
 
 /// The part shared by `mv` and `mvmf`: the current step's columns and the prediction; the
 /// two differ only in how they store J_prev.
 class MultiVector : public Model {
  public:
-  explicit MultiVector(const Settings& s)
-      : min_significant_(s.get_in_range("min_significant", 1e-12, Range::non_negative())) {}
+  explicit MultiVector(const Settings& s) : filter_(ColumnFilter::read(s)), current_(filter_) {}
 
   void initialize_step() override {
     has_reference_ = false;
-    current_ = StepColumns();
+    current_ = StepColumns(filter_);
   }
 
   void add(const Eigen::VectorXd& r, const Eigen::VectorXd& xt) override {
-    if (has_reference_) current_.insert(r - r_ref_, xt - xt_ref_, min_significant_);
+    if (has_reference_) current_.insert(r - r_ref_, xt - xt_ref_);
     r_ref_ = r;
     xt_ref_ = xt;
     has_reference_ = true;
@@ -129,7 +66,7 @@ class MultiVector : public Model {
   void finalize_step() override {
     // A step that converged in its first iteration has no columns: J_prev stays as it is.
     if (!current_.empty()) keep(std::move(current_));
-    current_ = StepColumns();
+    current_ = StepColumns(filter_);
   }
 
   /// The current step's columns plus those of previous steps still held in J_prev.
@@ -143,7 +80,7 @@ class MultiVector : public Model {
   virtual int previous_columns() const = 0;
 
  private:
-  double min_significant_;
+  ColumnFilter filter_;
   StepColumns current_;
   Eigen::VectorXd r_ref_, xt_ref_;
   bool has_reference_ = false;

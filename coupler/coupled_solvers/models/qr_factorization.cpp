@@ -1,55 +1,103 @@
 #include "coupler/coupled_solvers/models/qr_factorization.hpp"
 
+#include <algorithm>
 #include <cmath>
 
+#include "coupler/coupled_solvers/models/linear_combination.hpp"
+
 namespace cocopp {
+namespace {
+
+/// A column whose part orthogonal to the others is below this fraction of its norm is taken as
+/// dependent: no update from it is accurate.
+constexpr double kDependent = 1e-13;
+/// Re-orthogonalise while a Gram-Schmidt pass removes more than this fraction of the norm
+/// (Daniel-Gragg-Kaufman-Stewart): random or well-separated columns need one pass, nearly
+/// dependent ones two, rarely three.
+constexpr double kReorthogonalize = 0.7071067811865476;
+constexpr int kMaxPasses = 3;
+
+}  // namespace
 
 void QrFactorization::clear() {
-  q_.clear();
+  basis_size_ = 0;
+  u_.resize(0, 0);
   r_.resize(0, 0);
 }
 
-bool QrFactorization::orthogonalize(const Eigen::VectorXd& v, Eigen::VectorXd& w,
-                                    Eigen::VectorXd& rest) const {
-  // Classical Gram-Schmidt with one re-orthogonalisation: as accurate as Householder here.
-  const Eigen::Index k = columns();
-  w = Eigen::VectorXd::Zero(k);
-  rest = v;
-  for (int pass = 0; pass < 2; ++pass)
-    for (Eigen::Index i = 0; i < k; ++i) {
-      const double h = q_[std::size_t(i)].dot(rest);
-      rest -= h * q_[std::size_t(i)];
-      w(i) += h;
-    }
+void QrFactorization::append_basis_vector(const Eigen::VectorXd& b) {
+  if (basis_.rows() != b.size()) {  // first vector, or vectors of another length after clear()
+    basis_.resize(b.size(), 0);
+    basis_size_ = 0;
+  }
+  if (basis_size_ == basis_.cols())
+    basis_.conservativeResize(Eigen::NoChange, std::max<Eigen::Index>(8, 2 * basis_size_));
+  basis_.col(basis_size_++) = b;
+  u_.conservativeResize(basis_size_, Eigen::NoChange);
+  u_.row(basis_size_ - 1).setZero();
+}
+
+bool QrFactorization::split(const Eigen::VectorXd& v, Split& result) {
   const double norm = v.norm();
-  return norm > 0.0 && rest.norm() > 1e-13 * norm;
+  if (!(norm > 0.0)) return false;
+  compact_if_wasteful();
+  // Classical Gram-Schmidt against all of B (one matrix-vector product a pass).
+  Eigen::VectorXd on_basis = Eigen::VectorXd::Zero(basis_size_);
+  Eigen::VectorXd outside = v;
+  double outside_norm = norm;
+  for (int pass = 0; pass < kMaxPasses && basis_size_ > 0; ++pass) {
+    const Eigen::VectorXd h = basis().transpose() * outside;
+    add_linear_combination(outside, -h, [&](Eigen::Index j) { return basis_.col(j); });
+    on_basis += h;
+    const double previous = outside_norm;
+    outside_norm = outside.norm();
+    if (outside_norm >= kReorthogonalize * previous) break;
+  }
+  // v = Q on_q + B dead + outside, where dead lies in the directions of B not in Q. The same
+  // split in the small space of B's coordinates, twice: cheap, and needed when v lies almost
+  // in the span of Q.
+  result.on_q = Eigen::VectorXd::Zero(columns());
+  Eigen::VectorXd dead = on_basis;
+  for (int pass = 0; pass < 2 && columns() > 0; ++pass) {
+    const Eigen::VectorXd h = u_.transpose() * dead;
+    dead.noalias() -= u_ * h;
+    result.on_q += h;
+  }
+  result.rho = std::hypot(dead.norm(), outside_norm);
+  if (result.rho <= kDependent * norm) return false;
+  const bool grows = outside_norm > kDependent * norm;
+  if (grows) append_basis_vector(outside / outside_norm);
+  result.q_new = Eigen::VectorXd::Zero(basis_size_);
+  result.q_new.head(dead.size()) = dead / result.rho;
+  if (grows) result.q_new(basis_size_ - 1) = outside_norm / result.rho;
+  return true;
 }
 
 bool QrFactorization::append(const Eigen::VectorXd& v) {
-  Eigen::VectorXd w, rest;
-  if (!orthogonalize(v, w, rest)) return false;
+  Split s;
+  if (!split(v, s)) return false;
   const Eigen::Index k = columns();
-  const double rho = rest.norm();
+  u_.conservativeResize(Eigen::NoChange, k + 1);
+  u_.col(k) = s.q_new;
   r_.conservativeResize(k + 1, k + 1);
   r_.row(k).setZero();
-  r_.col(k).head(k) = w;
-  r_(k, k) = rho;
-  q_.push_back(rest / rho);
+  r_.col(k).head(k) = s.on_q;
+  r_(k, k) = s.rho;
   return true;
 }
 
 bool QrFactorization::insert_front(const Eigen::VectorXd& v) {
-  Eigen::VectorXd w, rest;
-  if (!orthogonalize(v, w, rest)) return false;
+  Split s;
+  if (!split(v, s)) return false;
   const Eigen::Index k = columns();
-  const double rho = rest.norm();
-  // [v V] = [Q q] [w R; rho 0]: triangularise the first column from the bottom up.
+  // [v V] = [Q q] [on_q R; rho 0]: triangularise the first column from the bottom up.
   Eigen::MatrixXd r = Eigen::MatrixXd::Zero(k + 1, k + 1);
-  r.col(0).head(k) = w;
-  r(k, 0) = rho;
+  r.col(0).head(k) = s.on_q;
+  r(k, 0) = s.rho;
   r.block(0, 1, k, k) = r_;  // R moves one column right
   r_ = std::move(r);
-  q_.push_back(rest / rho);
+  u_.conservativeResize(Eigen::NoChange, k + 1);
+  u_.col(k) = s.q_new;
   for (Eigen::Index i = k; i > 0; --i) {
     const double a = r_(i - 1, 0), b = r_(i, 0);
     const double h = std::hypot(a, b);
@@ -67,11 +115,9 @@ void QrFactorization::rotate(Eigen::Index i, double c, double s, Eigen::Index fr
     r_(i, j) = c * upper + s * lower;
     r_(i + 1, j) = -s * upper + c * lower;
   }
-  Eigen::VectorXd& left = q_[i];
-  Eigen::VectorXd& right = q_[i + 1];
-  const Eigen::VectorXd old_left = left;
-  left = c * left + s * right;
-  right = -s * old_left + c * right;
+  const Eigen::VectorXd left = u_.col(i);
+  u_.col(i) = c * left + s * u_.col(i + 1);
+  u_.col(i + 1) = -s * left + c * u_.col(i + 1);
 }
 
 void QrFactorization::remove(Eigen::Index j) {
@@ -90,20 +136,37 @@ void QrFactorization::remove(Eigen::Index j) {
   }
   // The last row of a k x (k-1) upper triangular matrix is zero: drop it with its Q column.
   r_.conservativeResize(k - 1, k - 1);
-  q_.pop_back();
+  u_.conservativeResize(Eigen::NoChange, k - 1);
 }
 
 void QrFactorization::remove_last() {
   const Eigen::Index k = columns();
   r_.conservativeResize(k - 1, k - 1);
-  q_.pop_back();
+  u_.conservativeResize(Eigen::NoChange, k - 1);
+}
+
+void QrFactorization::compact_if_wasteful() {
+  const Eigen::Index k = columns(), dead = basis_size_ - k;
+  if (k == 0) {
+    clear();
+    return;
+  }
+  // Rebuilding costs one n x m x k product; it pays once the dead directions would slow every
+  // projection down by a quarter.
+  if (dead <= std::max<Eigen::Index>(8, k / 4)) return;
+  const Eigen::MatrixXd q = basis() * u_;
+  basis_.leftCols(k) = q;
+  basis_size_ = k;
+  u_ = Eigen::MatrixXd::Identity(k, k);
+}
+
+Eigen::VectorXd QrFactorization::project(const Eigen::VectorXd& b) const {
+  if (columns() == 0) return Eigen::VectorXd();
+  return u_.transpose() * (basis().transpose() * b);
 }
 
 Eigen::VectorXd QrFactorization::solve(const Eigen::VectorXd& b) const {
-  const Eigen::Index k = columns();
-  Eigen::VectorXd qtb(k);
-  for (Eigen::Index i = 0; i < k; ++i) qtb(i) = q_[i].dot(b);
-  return r_.triangularView<Eigen::Upper>().solve(qtb);
+  return r_.triangularView<Eigen::Upper>().solve(project(b));
 }
 
 }  // namespace cocopp

@@ -2,16 +2,21 @@
 // Thin QR factorization V = Q R of a tall matrix whose columns are inserted at the front
 // (newest first) and removed anywhere, as the least-squares secant models need.
 //
-// Updates cost O(n k) (Givens rotations) instead of the O(n k^2) of a new factorization, which
-// matters because a quasi-Newton model changes V in every coupling iteration.
+// Updates cost O(n k) instead of the O(n k^2) of a new factorization, which matters because a
+// quasi-Newton model changes V in every coupling iteration. For large interfaces (n = 1e5,
+// k = 100: Q alone is 80 MB) the cost is memory traffic, so Q is never rewritten: it is kept as
+// Q = B U, with B (n x m) an orthonormal basis that only grows by appending and U (m x k) a
+// small matrix with orthonormal columns. The Givens rotations that keep R triangular act on U
+// alone. Removing a column leaves a direction of B unused; B is rebuilt (B <- B U, U <- I)
+// only when such dead directions make up a sizeable part of it.
 #include <Eigen/Core>
-#include <deque>
+#include <cmath>
 
 namespace cocopp {
 
 class QrFactorization {
  public:
-  Eigen::Index columns() const { return static_cast<Eigen::Index>(q_.size()); }
+  Eigen::Index columns() const { return r_.cols(); }
   void clear();
 
   /// V <- [v V]. Returns false (and changes nothing) if v lies numerically in the span of the
@@ -28,17 +33,31 @@ class QrFactorization {
   double diagonal(Eigen::Index j) const { return std::abs(r_(j, j)); }
   /// c = argmin ||V c - b||.
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
+  /// Q^T b (k values).
+  Eigen::VectorXd project(const Eigen::VectorXd& b) const;
 
  private:
-  /// Split v into its coefficients on Q (w) and the orthogonal rest. Returns false if the rest
-  /// is numerically zero.
-  bool orthogonalize(const Eigen::VectorXd& v, Eigen::VectorXd& w, Eigen::VectorXd& rest) const;
-  /// Apply the rotation [c s; -s c] to columns i and i + 1 of Q (and rows i, i+1 of R from
-  /// column `from` on), so that R = Q^T V stays consistent.
+  /// A new column v split into its coefficients on Q and the rest, q_new * rho, orthogonal
+  /// to Q; q_new is given by its coordinates in B (after B has grown if it had to).
+  struct Split {
+    Eigen::VectorXd on_q;   ///< k coefficients
+    Eigen::VectorXd q_new;  ///< coordinates of the new orthonormal column in B
+    double rho = 0.0;
+  };
+  /// Returns false if the rest is numerically zero (v depends on the columns of V).
+  bool split(const Eigen::VectorXd& v, Split& result);
+  void append_basis_vector(const Eigen::VectorXd& b);
+  /// Drop the dead directions of B when they are many: B <- B U, U <- I.
+  void compact_if_wasteful();
+  /// Apply the rotation [c s; -s c] to columns i and i + 1 of Q, i.e. of U (and to rows i,
+  /// i + 1 of R from column `from` on), so that V = Q R stays true.
   void rotate(Eigen::Index i, double c, double s, Eigen::Index from);
+  Eigen::Ref<const Eigen::MatrixXd> basis() const { return basis_.leftCols(basis_size_); }
 
-  std::deque<Eigen::VectorXd> q_;  ///< orthonormal columns; a deque makes front insertion O(1)
-  Eigen::MatrixXd r_;              ///< columns() x columns(), upper triangular
+  Eigen::MatrixXd basis_;        ///< B in its first basis_size_ columns; spare capacity after
+  Eigen::Index basis_size_ = 0;  ///< m
+  Eigen::MatrixXd u_;            ///< m x k, orthonormal columns: Q = B U
+  Eigen::MatrixXd r_;            ///< k x k, upper triangular
 };
 
 }  // namespace cocopp

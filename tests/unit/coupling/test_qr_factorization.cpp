@@ -87,3 +87,36 @@ TEST(QrFactorization, DependentColumnsAreRefused) {
   EXPECT_FALSE(qr.append(Eigen::VectorXd::Zero(5)));
   EXPECT_EQ(qr.columns(), 2);
 }
+
+// The way `ls` with reuse drives it: a few columns in front every step, the oldest dropped at
+// the back, for many steps. Dead directions pile up and the basis is rebuilt now and then;
+// the factorization must stay exact throughout, also when the columns outnumber the rows.
+TEST(QrFactorization, StaysExactOverManyStepsOfInsertFrontAndRemoveLast) {
+  std::srand(11);
+  for (const int n : {12, 60}) {
+    QrFactorization qr;
+    Eigen::MatrixXd v(n, 0);
+    for (int step = 0; step < 40; ++step) {
+      for (int i = 0; i < 4; ++i) {
+        const Eigen::VectorXd column = Eigen::VectorXd::Random(n);
+        if (!qr.insert_front(column)) continue;  // more columns than rows
+        Eigen::MatrixXd next(n, v.cols() + 1);
+        next << column, v;
+        v = next;
+      }
+      while (v.cols() > 10) {
+        qr.remove_last();
+        v = Eigen::MatrixXd(v.leftCols(v.cols() - 1));
+      }
+      if (step % 3 == 1 && v.cols() > 2) {  // a filtered middle column now and then
+        qr.remove(1);
+        Eigen::MatrixXd shorter(n, v.cols() - 1);
+        shorter << v.leftCols(1), v.rightCols(v.cols() - 2);
+        v = shorter;
+      }
+      SCOPED_TRACE("n " + std::to_string(n) + ", step " + std::to_string(step));
+      expect_factorizes(qr, v);
+      if (::testing::Test::HasFailure()) return;
+    }
+  }
+}

@@ -1,0 +1,113 @@
+#include "coupler/coupled_solvers/models/secant_columns.hpp"
+
+#include <algorithm>
+
+#include "coupler/case/settings.hpp"
+#include "coupler/coupled_solvers/models/linear_combination.hpp"
+
+namespace cocopp {
+
+ColumnFilter ColumnFilter::read(const Settings& s) {
+  ColumnFilter f;
+  f.min_significant = s.get_in_range("min_significant", f.min_significant, Range::non_negative());
+  f.min_significant_relative = s.get_in_range("min_significant_relative",
+                                              f.min_significant_relative, Range::closed(0.0, 1.0));
+  return f;
+}
+
+void SecantColumns::insert(Eigen::VectorXd v, Eigen::VectorXd w) {
+  const double norm = v.norm();
+  columns_.push_front({std::move(v), std::move(w), 0});
+  norms_.push_front(norm);
+  if (!qr_.insert_front(columns_.front().v)) refactorize();
+  filter();
+}
+
+void SecantColumns::restore(Column column) {
+  const double norm = column.v.norm();
+  columns_.push_back(std::move(column));
+  norms_.push_back(norm);
+  if (!qr_.append(columns_.back().v)) refactorize();
+}
+
+bool SecantColumns::significant(Eigen::Index i) const {
+  const double r_ii = qr_.diagonal(i);
+  return r_ii > 0.0 && r_ii >= filter_.min_significant &&
+         r_ii >= filter_.min_significant_relative * norms_[std::size_t(i)];
+}
+
+void SecantColumns::filter() {
+  // Newest first: removing a column changes only the R_ii of the older ones.
+  for (Eigen::Index i = 0; i < qr_.columns();) {
+    if (significant(i)) {
+      ++i;
+      continue;
+    }
+    qr_.remove(i);
+    columns_.erase(columns_.begin() + i);
+    norms_.erase(norms_.begin() + i);
+  }
+}
+
+void SecantColumns::refactorize() {
+  // Used when an update would be inaccurate (a new column numerically in the span of the
+  // others). A column numerically dependent on newer ones is dropped here; filter() then
+  // applies the thresholds.
+  qr_.clear();
+  for (std::size_t i = 0; i < columns_.size();) {
+    if (qr_.append(columns_[i].v)) {
+      ++i;
+      continue;
+    }
+    columns_.erase(columns_.begin() + std::ptrdiff_t(i));
+    norms_.erase(norms_.begin() + std::ptrdiff_t(i));
+  }
+}
+
+void SecantColumns::age_and_drop(int max_age) {
+  for (auto& column : columns_) ++column.age;
+  while (!columns_.empty() && columns_.back().age > max_age) {
+    columns_.pop_back();
+    norms_.pop_back();
+    qr_.remove_last();
+  }
+}
+
+template <class Member>
+Eigen::VectorXd SecantColumns::combine(const Eigen::VectorXd& c, Member member) const {
+  // W may be longer than V (secondary data in the output only).
+  const Eigen::Index n = columns_.empty() ? 0 : (columns_.front().*member).size();
+  Eigen::VectorXd result = Eigen::VectorXd::Zero(n);
+  add_linear_combination(result, c, [&](Eigen::Index j) -> const Eigen::VectorXd& {
+    return columns_[std::size_t(j)].*member;
+  });
+  return result;
+}
+
+Eigen::VectorXd SecantColumns::combine_w(const Eigen::VectorXd& c) const {
+  return combine(c, &Column::w);
+}
+
+Eigen::VectorXd SecantColumns::combine_v(const Eigen::VectorXd& c) const {
+  return combine(c, &Column::v);
+}
+
+namespace {
+
+template <class Member>
+Eigen::MatrixXd as_matrix(const std::deque<SecantColumns::Column>& columns, Member member) {
+  Eigen::MatrixXd m(columns.front().v.size(), Eigen::Index(columns.size()));
+  for (std::size_t i = 0; i < columns.size(); ++i) m.col(Eigen::Index(i)) = columns[i].*member;
+  return m;
+}
+
+}  // namespace
+
+Eigen::MatrixXd SecantColumns::v_matrix() const {
+  return as_matrix(columns_, &Column::v);
+}
+Eigen::MatrixXd SecantColumns::w_matrix() const {
+  return as_matrix(columns_, &Column::w);
+}
+
+}  // namespace cocopp

@@ -1,0 +1,72 @@
+#pragma once
+// SecantColumns: the column pairs (v, w) = (residual difference, solver output difference) a
+// least-squares secant model fits, newest first, with the QR factorization of V and the
+// filtering both the `ls` and the multi-vector models use.
+//
+// Filtering: a column whose |R_ii| (the part not explained by the newer columns) is below
+// `min_significant` (absolute, CoCoNuT's criterion) or below `min_significant_relative` times
+// its own norm (preCICE's QR3) carries no new information: it is removed for good, so older,
+// nearly dependent columns make way for newer ones.
+#include <Eigen/Core>
+#include <deque>
+
+#include "coupler/coupled_solvers/models/qr_factorization.hpp"
+
+namespace cocopp {
+
+class Settings;
+
+struct ColumnFilter {
+  double min_significant = 1e-12;
+  double min_significant_relative = 0.0;
+  /// Reads `min_significant` and `min_significant_relative` from a model's settings.
+  static ColumnFilter read(const Settings& settings);
+};
+
+class SecantColumns {
+ public:
+  struct Column {
+    Eigen::VectorXd v;  ///< residual difference
+    Eigen::VectorXd w;  ///< solver output difference
+    int age = 0;        ///< time steps since the column was made (0: current step)
+  };
+
+  explicit SecantColumns(ColumnFilter filter = {}) : filter_(filter) {}
+
+  int size() const { return static_cast<int>(columns_.size()); }
+  bool empty() const { return columns_.empty(); }
+  Eigen::Index rows() const { return columns_.empty() ? 0 : columns_.front().v.size(); }
+  const std::deque<Column>& columns() const { return columns_; }
+
+  /// Add a column pair in front (age 0), then drop the insignificant columns. A zero or
+  /// repeated residual, or more columns than rows, ends up dropped here, never as NaN.
+  void insert(Eigen::VectorXd v, Eigen::VectorXd w);
+  /// Add a column at the back (oldest) as it was saved, without filtering: for restoring.
+  void restore(Column column);
+
+  /// c = V^+ y = argmin ||V c - y||.
+  Eigen::VectorXd coefficients(const Eigen::VectorXd& y) const { return qr_.solve(y); }
+  /// W c and V c.
+  Eigen::VectorXd combine_w(const Eigen::VectorXd& c) const;
+  Eigen::VectorXd combine_v(const Eigen::VectorXd& c) const;
+
+  /// A time step ended: every column gets one step older; those older than `max_age` go.
+  void age_and_drop(int max_age);
+
+  Eigen::MatrixXd v_matrix() const;
+  Eigen::MatrixXd w_matrix() const;
+
+ private:
+  bool significant(Eigen::Index i) const;
+  void filter();
+  void refactorize();
+  template <class Member>
+  Eigen::VectorXd combine(const Eigen::VectorXd& c, Member member) const;
+
+  ColumnFilter filter_;
+  std::deque<Column> columns_;  ///< newest first, matching the columns of qr_
+  std::deque<double> norms_;    ///< ||v|| of each column
+  QrFactorization qr_;
+};
+
+}  // namespace cocopp
