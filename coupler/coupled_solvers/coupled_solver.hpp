@@ -49,7 +49,9 @@ class CoupledSolver {
   /// the residual r = x~ - x.
   virtual Eigen::VectorXd next_input(const Eigen::VectorXd& x, const Eigen::VectorXd& xt,
                                      const Eigen::VectorXd& r) = 0;
-  /// Hooks for methods with memory across iterations and steps.
+  /// Hooks for methods with memory across iterations and steps; on_initialized() runs once
+  /// the interfaces x() and y() are known.
+  virtual void on_initialized() {}
   virtual void on_step_start() {}
   virtual void on_step_end() {}
   /// Explicit coupling makes one pass per step.

@@ -25,6 +25,7 @@
 #include "coupler/coupled_solvers/coupled_solver.hpp"
 #include "coupler/coupled_solvers/gmres.hpp"
 #include "coupler/coupled_solvers/models/model.hpp"
+#include "coupler/coupled_solvers/scaling.hpp"
 
 namespace cocopp {
 namespace {
@@ -50,9 +51,11 @@ class Ibqn : public CoupledSolver {
         maximum_iterations_(
             s.child_or_empty("gmres").get_int_in_range("maximum_iterations", 100, 1)),
         f_(s, "model_f"),
-        s_(s, "model_s") {}
+        s_(s, "model_s"),
+        scaling_(s) {}
 
  protected:
+  void on_initialized() override { scaling_.bind({&x(), &y()}); }
   void on_step_start() override {
     f_.model->initialize_step();
     s_.model->initialize_step();
@@ -66,15 +69,16 @@ class Ibqn : public CoupledSolver {
                              const Eigen::VectorXd& r) override {
     // y() holds F(x) of this iteration: the base class stores it before calling S.
     const Eigen::VectorXd& y = this->y().data();
-    f_.model->add(x, y);
-    s_.model->add(y, xt);
+    f_.model->add(scaling_.apply(kX, x), y);
+    s_.model->add(scaling_.apply(kY, y), xt);
     // Filtering may leave a model without columns: then relax as in the first iteration.
     if (!f_.has_information() || !s_.has_information()) return x + omega_ * r;
     return x + block_update(r);
   }
 
   std::string describe_settings() const override {
-    return fmt::format("omega {:g}, model_f {}, model_s {}", omega_, f_.type, s_.type);
+    const std::string scaling = scaling_.enabled() ? ", scaling " + scaling_.describe() : "";
+    return fmt::format("omega {:g}, model_f {}, model_s {}{}", omega_, f_.type, s_.type, scaling);
   }
 
  private:
@@ -82,7 +86,8 @@ class Ibqn : public CoupledSolver {
   /// best dx of its Krylov space; the coupling iteration corrects what remains.
   Eigen::VectorXd block_update(const Eigen::VectorXd& r) {
     auto apply = [this](const Eigen::VectorXd& dx) -> Eigen::VectorXd {
-      return dx - s_.model->predict(f_.model->predict(dx));
+      const Eigen::VectorXd dy = f_.model->predict(scaling_.apply(kX, dx));
+      return dx - s_.model->predict(scaling_.apply(kY, dy));
     };
     return gmres(apply, r, tolerance_, maximum_iterations_).x;
   }
@@ -92,6 +97,8 @@ class Ibqn : public CoupledSolver {
   int maximum_iterations_;
   NamedModel f_;
   NamedModel s_;
+  VariableScaling scaling_;  ///< weights of the models' inputs: x (kX) and y (kY)
+  static constexpr std::size_t kX = 0, kY = 1;
 };
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include "coupler/coupled_solvers/coupled_solver.hpp"
 #include "coupler/coupled_solvers/models/model.hpp"
+#include "coupler/coupled_solvers/scaling.hpp"
 
 namespace cocopp {
 namespace {
@@ -15,17 +16,20 @@ class Iqni : public CoupledSolver {
       : CoupledSolver(s),
         omega_(s.get_in_range("omega", 0.01, {0.0, 2.0, true})),
         model_type_(s.child("model").required<std::string>("type")),
-        model_(ModelRegistry::instance().create(s.child("model"))) {}
+        model_(ModelRegistry::instance().create(s.child("model"))),
+        scaling_(s) {}
 
  protected:
+  void on_initialized() override { scaling_.bind({&x()}); }
   void on_step_start() override { model_->initialize_step(); }
   void on_step_end() override { model_->finalize_step(); }
 
   Eigen::VectorXd next_input(const Eigen::VectorXd& x, const Eigen::VectorXd& xt,
                              const Eigen::VectorXd& r) override {
-    model_->add(r, xt);
+    const Eigen::VectorXd weighted_r = scaling_.apply(0, r);
+    model_->add(weighted_r, xt);
     if (model_->is_ready()) {
-      const Eigen::VectorXd dxt = model_->predict(-r);
+      const Eigen::VectorXd dxt = model_->predict(-weighted_r);
       // Filtering may have removed every column: then relax as in the first iteration.
       if (model_->columns() > 0) return xt + dxt;
     }
@@ -33,13 +37,15 @@ class Iqni : public CoupledSolver {
   }
 
   std::string describe_settings() const override {
-    return fmt::format("omega {:g}, model {}", omega_, model_type_);
+    const std::string scaling = scaling_.enabled() ? ", scaling " + scaling_.describe() : "";
+    return fmt::format("omega {:g}, model {}{}", omega_, model_type_, scaling);
   }
 
  private:
   double omega_;
   std::string model_type_;
   std::unique_ptr<Model> model_;
+  VariableScaling scaling_;
 };
 
 }  // namespace

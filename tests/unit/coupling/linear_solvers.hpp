@@ -66,3 +66,39 @@ class AffineSolver : public SolverWrapper {
 };
 
 }  // namespace cocopp::testing
+
+namespace cocopp::testing {
+
+/// output = matrix * input + offset on the whole flattened interface vectors, whatever their
+/// variables: for problems whose interfaces carry several variables.
+class FlatAffineSolver : public SolverWrapper {
+ public:
+  FlatAffineSolver(std::string name, Interface input, Interface output, Eigen::MatrixXd matrix,
+                   Eigen::VectorXd offset)
+      : name_(std::move(name)),
+        input_(std::move(input)),
+        output_(std::move(output)),
+        matrix_(std::move(matrix)),
+        offset_(std::move(offset)) {}
+
+  const std::string& name() const override { return name_; }
+  void initialize() override {}
+  const Interface& input_interface() const override { return input_; }
+  const Interface& output_interface() const override { return output_; }
+  void initialize_step(int, double) override {}
+  const Interface& solve(const Interface& input) override {
+    output_.set_data(matrix_ * input.data() + offset_);
+    return output_;
+  }
+  void finalize_step() override {}
+  void output_step() override {}
+  void finalize() override {}
+
+ private:
+  std::string name_;
+  Interface input_, output_;
+  Eigen::MatrixXd matrix_;
+  Eigen::VectorXd offset_;
+};
+
+}  // namespace cocopp::testing

@@ -1,0 +1,63 @@
+#pragma once
+// VariableScaling: per-variable weights for the least-squares problems of the quasi-Newton
+// methods. An interface that carries pressure (1e5 Pa) next to shear traction (1 Pa), or
+// displacement next to a load, makes an unweighted least-squares fit see only the largest
+// variable: the small one's secant information looks like round-off and is filtered away.
+// Weighting each variable's values gives every variable a say.
+//
+// Case file (`coupled_solver.scaling`):
+//   absent                      all weights 1 (no scaling)
+//   {pressure: 1e-5, ...}       fixed weight per variable (others 1)
+//   automatic                   weight 1 / RMS of the first non-zero values of the variable the
+//                               models see (iqni: the residual; ibqn: x and y), then frozen,
+//                               so that the models' stored columns stay consistent (values
+//                               seen before were zero, which no weight changes)
+// The weights apply to what the models fit (IQN-ILS then solves argmin ||D (V c + r)||); the
+// absolute filter `min_significant` is in the weighted units.
+#include <Eigen/Core>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "coupler/case/settings.hpp"
+#include "coupler/data/interface.hpp"
+
+namespace cocopp {
+
+class VariableScaling {
+ public:
+  /// Reads `scaling` from the coupled solver's settings.
+  explicit VariableScaling(const Settings& coupled_solver_settings);
+
+  /// Lay the weights out on the interfaces whose values get weighted (x for iqni; x and y
+  /// for ibqn). A named variable on none of them is a case error that lists those present.
+  void bind(const std::vector<const Interface*>& layouts);
+
+  /// Weighted copy of values laid out as interface `index` of bind(). With `automatic`, the
+  /// first call with a non-zero variable fixes that variable's weight.
+  Eigen::VectorXd apply(std::size_t index, const Eigen::VectorXd& values);
+
+  bool enabled() const { return automatic_ || !fixed_.empty(); }
+  /// "automatic" or "pressure 1e-05, traction 1"; "" when off.
+  std::string describe() const;
+  /// The weight of each variable, as fixed so far (for the saved state).
+  const std::map<std::string, double>& weights() const { return weights_; }
+  /// Continue with weights saved by an earlier run.
+  void restore(const std::map<std::string, double>& weights);
+
+ private:
+  struct Layout {
+    std::vector<Interface::Block> blocks;
+    Eigen::VectorXd weights;  ///< one per value; rebuilt when weights_ change
+  };
+  void fix_automatic_weights(const Layout& layout, const Eigen::VectorXd& values);
+  void refresh_weights();
+
+  bool automatic_ = false;
+  std::map<std::string, double> fixed_;    ///< from the case file
+  std::map<std::string, double> weights_;  ///< in use: fixed_, plus automatic ones found so far
+  std::vector<Layout> layouts_;
+  Settings settings_;  ///< the coupled solver's, for errors found in bind()
+};
+
+}  // namespace cocopp
