@@ -42,6 +42,7 @@ Case load_case(const std::filesystem::path& file) {
   c.results_directory =
       root.base_directory() / settings.get<std::string>("results_directory", "results");
   c.results_name = settings.get<std::string>("results_name", file.stem().string());
+  c.state_interval = settings.get_int_in_range("state_interval", 0, 0);
 
   const Settings coupled = root.child("coupled_solver");
   c.coupled_solver_type = coupled.required<std::string>("type");

@@ -18,6 +18,7 @@ struct Case {
   std::vector<std::unique_ptr<SolverWrapper>> solvers;  ///< exactly two: F (x -> y), S (y -> x)
   std::filesystem::path results_directory;
   std::string results_name;  ///< file stem of the HDF5 file and the JSON summary
+  int state_interval = 0;    ///< also save the coupled-solver state every this many steps
   double end_time() const { return run.delta_t * (run.timestep_start + run.number_of_timesteps); }
 };
 

@@ -11,6 +11,7 @@
 #include "coupler/app/case.hpp"
 #include "coupler/results/results_writer.hpp"
 #include "coupler/results/run_summary.hpp"
+#include "coupler/results/state_file.hpp"
 #include "solver_wrappers/process/child_process.hpp"
 #include "solver_wrappers/solver_error.hpp"
 
@@ -104,7 +105,20 @@ class Run {
       iterations_ += record.iterations;
       algorithm_time_ += record.coupler_time;
       if (!options.quiet) print_progress(record, last);
+      if (case_.state_interval > 0 && step % case_.state_interval == 0) save_state(step);
     }
+    save_state(last);
+  }
+
+  /// Between steps only: in the middle of a step the models hold half a step's columns.
+  void save_state(int step) {
+    SavedState saved;
+    saved.step = step;
+    saved.time = step * case_.run.delta_t;
+    saved.coupled_solver = case_.coupled_solver->describe();
+    case_.coupled_solver->save_state(saved.state);
+    write_state_file(results_path(".state.h5"), saved);
+    state_saved_ = true;
   }
 
   void stop_solvers(Outcome& outcome) {
@@ -144,6 +158,7 @@ class Run {
       line("iterations", fmt::format("{:.2f} per time step on average ({} in all)",
                                      double(iterations_) / steps, iterations_));
     if (writer_) line("results", writer_->path().string());
+    if (state_saved_) line("solver state", results_path(".state.h5").string());
     line("summary", results_path(".summary.json").string());
     std::fflush(stdout);  // the error comes last, after the summary, also when piped
     if (outcome.status != "completed") fmt::print(stderr, "\nerror: {}\n", outcome.message);
@@ -155,6 +170,7 @@ class Run {
   Clock::time_point start_ = Clock::now();
   long iterations_ = 0;
   double algorithm_time_ = 0.0;
+  bool state_saved_ = false;
 };
 
 }  // namespace

@@ -34,6 +34,9 @@ class Aitken : public CoupledSolver {
     return x + omega_ * r;
   }
 
+  void save_own_state(State& state) const override { state.set("omega", omega_); }
+  void load_own_state(const State& state) override { omega_ = state.scalar("omega"); }
+
   std::string describe_settings() const override {
     return fmt::format("omega_max {:g}", omega_max_);
   }

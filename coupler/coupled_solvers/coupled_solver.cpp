@@ -178,6 +178,28 @@ void CoupledSolver::check_divergence(const std::vector<double>& norms, int step,
       step, time, n, last, norms.size(), n, divergence_advice()));
 }
 
+void CoupledSolver::save_state(State& state) const {
+  const auto& history = predictor_->history();
+  Eigen::MatrixXd columns(x_.size(), Eigen::Index(history.size()));
+  for (std::size_t i = 0; i < history.size(); ++i) columns.col(Eigen::Index(i)) = history[i];
+  state.group("predictor").set("history", std::move(columns));
+  save_own_state(state);
+}
+
+void CoupledSolver::load_state(const State& state) {
+  const Eigen::MatrixXd& columns = state.group("predictor").matrix("history");
+  if (columns.rows() != x_.size() || columns.cols() == 0)
+    throw std::runtime_error(fmt::format(
+        "the saved coupled-solver state holds an interface of {} values, this run's has {} "
+        "([{}])",
+        columns.rows(), x_.size(), x_.describe()));
+  std::deque<Eigen::VectorXd> history;
+  for (Eigen::Index i = 0; i < columns.cols(); ++i) history.push_back(columns.col(i));
+  predictor_->restore(std::move(history));
+  x_.set_data(columns.col(0));
+  load_own_state(state);
+}
+
 std::string CoupledSolver::divergence_advice() const {
   return "Strongly coupled problems (light structures, dense fluids) need a quasi-Newton "
          "method: try coupled_solver type 'iqni' with model 'ls', or 'aitken', or a smaller "

@@ -13,6 +13,7 @@
 
 #include "coupler/convergence/convergence_criterion.hpp"
 #include "coupler/predictors/predictor.hpp"
+#include "coupler/results/state.hpp"
 #include "coupler/results/step_record.hpp"
 #include "solver_wrappers/solver_wrapper.hpp"
 
@@ -41,6 +42,12 @@ class CoupledSolver {
   const Interface& y() const { return y_; }
   /// "iqni (omega 0.05, model ls q 10), predictor linear, until (...)": for the run header.
   std::string describe() const;
+  /// The memory a restarted run needs to continue as this one would (predictor history and
+  /// the type's own: secant columns, Aitken's factor, scaling weights), between time steps.
+  void save_state(State& state) const;
+  /// Continue from a saved state (after initialize()); throws std::runtime_error if it does
+  /// not fit this coupled solver or interface.
+  void load_state(const State& state);
   /// Wall time spent in each solver since initialize(), in seconds.
   const std::array<double, 2>& solver_time_total() const { return solver_time_total_; }
 
@@ -56,6 +63,9 @@ class CoupledSolver {
   virtual void on_step_end() {}
   /// Explicit coupling makes one pass per step.
   virtual bool iterates() const { return true; }
+  /// The type's own part of the state.
+  virtual void save_own_state(State&) const {}
+  virtual void load_own_state(const State&) {}
   /// The type's own settings for describe(), e.g. "omega 0.05".
   virtual std::string describe_settings() const { return ""; }
   /// What to suggest when this method diverges.

@@ -76,6 +76,17 @@ class Ibqn : public CoupledSolver {
     return x + block_update(r);
   }
 
+  void save_own_state(State& state) const override {
+    f_.model->save_state(state.group("model_f"));
+    s_.model->save_state(state.group("model_s"));
+    scaling_.save_state(state.group("scaling"));
+  }
+  void load_own_state(const State& state) override {
+    f_.model->load_state(state.group("model_f"));
+    s_.model->load_state(state.group("model_s"));
+    scaling_.load_state(state.group("scaling"));
+  }
+
   std::string describe_settings() const override {
     const std::string scaling = scaling_.enabled() ? ", scaling " + scaling_.describe() : "";
     return fmt::format("omega {:g}, model_f {}, model_s {}{}", omega_, f_.type, s_.type, scaling);

@@ -36,6 +36,15 @@ class Iqni : public CoupledSolver {
     return x + omega_ * r;
   }
 
+  void save_own_state(State& state) const override {
+    model_->save_state(state.group("model"));
+    scaling_.save_state(state.group("scaling"));
+  }
+  void load_own_state(const State& state) override {
+    model_->load_state(state.group("model"));
+    scaling_.load_state(state.group("scaling"));
+  }
+
   std::string describe_settings() const override {
     const std::string scaling = scaling_.enabled() ? ", scaling " + scaling_.describe() : "";
     return fmt::format("omega {:g}, model {}{}", omega_, model_type_, scaling);

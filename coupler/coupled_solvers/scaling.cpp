@@ -76,8 +76,13 @@ Eigen::VectorXd VariableScaling::apply(std::size_t index, const Eigen::VectorXd&
   return layout.weights.cwiseProduct(values);
 }
 
-void VariableScaling::restore(const std::map<std::string, double>& weights) {
-  weights_ = weights;
+void VariableScaling::save_state(State& state) const {
+  for (const auto& [variable, weight] : weights_) state.set(variable, weight);
+}
+
+void VariableScaling::load_state(const State& state) {
+  weights_.clear();
+  for (const auto& [variable, array] : state.arrays()) weights_[variable] = state.scalar(variable);
   refresh_weights();
 }
 

@@ -21,6 +21,7 @@
 
 #include "coupler/case/settings.hpp"
 #include "coupler/data/interface.hpp"
+#include "coupler/results/state.hpp"
 
 namespace cocopp {
 
@@ -42,8 +43,9 @@ class VariableScaling {
   std::string describe() const;
   /// The weight of each variable, as fixed so far (for the saved state).
   const std::map<std::string, double>& weights() const { return weights_; }
-  /// Continue with weights saved by an earlier run.
-  void restore(const std::map<std::string, double>& weights);
+  /// The weights as scalars named after the variables, and back.
+  void save_state(State& state) const;
+  void load_state(const State& state);
 
  private:
   struct Layout {

@@ -29,6 +29,7 @@ class Extrapolation : public Predictor {
   }
 
   const std::deque<Eigen::VectorXd>& history() const override { return history_; }
+  void restore(std::deque<Eigen::VectorXd> history) override { history_ = std::move(history); }
 
  private:
   /// The extrapolation of the highest order the current history supports.

@@ -21,6 +21,8 @@ class Predictor {
   virtual void update(const Eigen::VectorXd& x) = 0;
   /// Converged values, newest first (the state to save for a restart).
   virtual const std::deque<Eigen::VectorXd>& history() const = 0;
+  /// Continue from a saved history (newest first).
+  virtual void restore(std::deque<Eigen::VectorXd> history) = 0;
 };
 
 using PredictorRegistry = Registry<Predictor>;

@@ -4,53 +4,16 @@
 // The file is flushed after every step, so a run that is killed leaves a readable file with all
 // steps written so far (its "status" attribute then still says "running"). The layout (groups,
 // datasets, shapes, units, attributes) is documented in docs/results.md; keep the two in sync.
-#include <hdf5.h>
-
 #include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "coupler/data/interface.hpp"
+#include "coupler/results/hdf5_support.hpp"
 #include "coupler/results/step_record.hpp"
 
 namespace cocopp {
-
-/// Owns one HDF5 identifier and releases it with the matching H5?close function.
-class H5Handle {
- public:
-  using Closer = herr_t (*)(hid_t);
-
-  H5Handle() = default;
-  H5Handle(hid_t id, Closer closer) : id_(id), closer_(closer) {}
-  H5Handle(H5Handle&& other) noexcept { *this = std::move(other); }
-  H5Handle& operator=(H5Handle&& other) noexcept {
-    if (this != &other) {
-      reset();
-      id_ = other.id_;
-      closer_ = other.closer_;
-      other.id_ = H5I_INVALID_HID;
-    }
-    return *this;
-  }
-  H5Handle(const H5Handle&) = delete;
-  H5Handle& operator=(const H5Handle&) = delete;
-  ~H5Handle() { reset(); }
-
-  hid_t get() const { return id_; }
-  bool valid() const { return id_ >= 0; }
-  /// Closes now; returns the closer's status (0 if there was nothing to close).
-  herr_t reset() {
-    herr_t status = 0;
-    if (valid() && closer_) status = closer_(id_);
-    id_ = H5I_INVALID_HID;
-    return status;
-  }
-
- private:
-  hid_t id_ = H5I_INVALID_HID;
-  Closer closer_ = nullptr;
-};
 
 class ResultsWriter {
  public:

@@ -43,6 +43,15 @@ TEST(CocoppRun, FlowStructureTubeConvergesWithIqnIls) {
   ASSERT_EQ(iterations.size(), 100u);
   const auto converged = read_dataset(dir / "results" / "case.h5", "steps/converged");
   for (double c : converged) EXPECT_EQ(c, 1.0);
+  // The coupled-solver state at the end: the predictor's last two converged displacements
+  // (linear predictor; 100 points x 3 components) and the reused IQN-ILS columns.
+  const fs::path state = dir / "results" / "case.state.h5";
+  EXPECT_NE(run.output.find("case.state.h5"), std::string::npos);
+  EXPECT_EQ(read_dataset(state, "predictor/history").size(), 300u * 2u);
+  const auto ages = read_dataset(state, "model/age");
+  EXPECT_GT(ages.size(), 0u);
+  EXPECT_EQ(read_dataset(state, "model/v").size(), 300u * ages.size());
+  for (double age : ages) EXPECT_LE(age, 10.0);  // q = 10
   fs::remove_all(dir);
 }
 

@@ -36,6 +36,9 @@ class LeastSquares : public Model {
 
   int columns() const override { return columns_.size(); }
 
+  void save_state(State& state) const override { columns_.save_state(state); }
+  void load_state(const State& state) override { columns_.load_state(state); }
+
  private:
   int reused_steps_;
   SecantColumns columns_;

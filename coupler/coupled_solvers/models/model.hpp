@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 
 #include "coupler/case/registry.hpp"
+#include "coupler/results/state.hpp"
 
 namespace cocopp {
 
@@ -25,6 +26,10 @@ class Model {
   virtual void finalize_step() = 0;
   /// Number of secant columns currently in use (for reports and tests).
   virtual int columns() const = 0;
+  /// What the model carries from step to step, at a step boundary (after finalize_step), and
+  /// back: a model loaded from a saved state predicts exactly as the one that saved it.
+  virtual void save_state(State& state) const = 0;
+  virtual void load_state(const State& state) = 0;
 };
 
 using ModelRegistry = Registry<Model>;

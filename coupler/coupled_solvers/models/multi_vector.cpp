@@ -72,7 +72,17 @@ class MultiVector : public Model {
   /// The current step's columns plus those of previous steps still held in J_prev.
   int columns() const override { return current_.size() + previous_columns(); }
 
+  /// At a step boundary the current step has no columns: J_prev is the whole state.
+  void save_state(State& state) const override { save_previous(state); }
+  void load_state(const State& state) override {
+    current_ = StepColumns(filter_);
+    load_previous(state);
+  }
+
  protected:
+  const ColumnFilter& filter() const { return filter_; }
+  virtual void save_previous(State& state) const = 0;
+  virtual void load_previous(const State& state) = 0;
   /// J_prev y.
   virtual Eigen::VectorXd apply_previous(const Eigen::VectorXd& y) const = 0;
   /// J_prev <- J_prev + (W - J_prev V) V^+ for a finished step's (non-empty) columns.
@@ -112,6 +122,15 @@ class MultiVectorDense : public MultiVector {
 
   int previous_columns() const override { return columns_kept_; }
 
+  void save_previous(State& state) const override {
+    state.set("jacobian", jacobian_);
+    state.set("columns_kept", double(columns_kept_));
+  }
+  void load_previous(const State& state) override {
+    jacobian_ = state.matrix("jacobian");
+    columns_kept_ = int(state.scalar("columns_kept"));
+  }
+
  private:
   Eigen::MatrixXd jacobian_;  ///< J_prev; empty until a step has added columns
   int columns_kept_ = 0;      ///< all columns of previous steps: J_prev never forgets
@@ -141,6 +160,21 @@ class MultiVectorMatrixFree : public MultiVector {
     int total = 0;
     for (const StepColumns& step : steps_) total += step.size();
     return total;
+  }
+
+  void save_previous(State& state) const override {
+    state.set("steps", double(steps_.size()));
+    for (std::size_t i = 0; i < steps_.size(); ++i)
+      steps_[i].save_state(state.group("step_" + std::to_string(i)));
+  }
+  void load_previous(const State& state) override {
+    steps_.clear();
+    const int count = int(state.scalar("steps"));
+    for (int i = 0; i < count; ++i) {
+      StepColumns step(filter());
+      step.load_state(state.group("step_" + std::to_string(i)));
+      steps_.push_back(std::move(step));
+    }
   }
 
  private:

@@ -92,6 +92,31 @@ Eigen::VectorXd SecantColumns::combine_v(const Eigen::VectorXd& c) const {
   return combine(c, &Column::v);
 }
 
+void SecantColumns::save_state(State& state) const {
+  if (empty()) {
+    state.set("v", Eigen::MatrixXd());
+    state.set("w", Eigen::MatrixXd());
+    state.set("age", Eigen::VectorXd());
+    return;
+  }
+  state.set("v", v_matrix());
+  state.set("w", w_matrix());
+  Eigen::VectorXd ages(size());
+  for (int i = 0; i < size(); ++i) ages(i) = columns_[std::size_t(i)].age;
+  state.set("age", ages);
+}
+
+void SecantColumns::load_state(const State& state) {
+  const Eigen::MatrixXd& v = state.matrix("v");
+  const Eigen::MatrixXd& w = state.matrix("w");
+  const Eigen::VectorXd ages = state.vector("age");
+  columns_.clear();
+  norms_.clear();
+  qr_.clear();
+  for (Eigen::Index i = 0; i < ages.size(); ++i)  // saved newest first: append keeps the order
+    restore({v.col(i), w.col(i), int(ages(i))});
+}
+
 namespace {
 
 template <class Member>

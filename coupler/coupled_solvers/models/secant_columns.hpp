@@ -11,6 +11,7 @@
 #include <deque>
 
 #include "coupler/coupled_solvers/models/qr_factorization.hpp"
+#include "coupler/results/state.hpp"
 
 namespace cocopp {
 
@@ -52,6 +53,10 @@ class SecantColumns {
 
   /// A time step ended: every column gets one step older; those older than `max_age` go.
   void age_and_drop(int max_age);
+
+  /// V, W and the ages as arrays `v`, `w`, `age`; load_state() replaces the columns.
+  void save_state(State& state) const;
+  void load_state(const State& state);
 
   Eigen::MatrixXd v_matrix() const;
   Eigen::MatrixXd w_matrix() const;

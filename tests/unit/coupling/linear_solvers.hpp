@@ -41,8 +41,8 @@ class AffineSolver : public SolverWrapper {
     ++calls;
     const auto& in_block = input.blocks().front();
     const auto in = input.values(in_block.model_part, in_block.variable);
-    const Eigen::VectorXd result =
-        matrix_ * Eigen::VectorXd(in.col(in.cols() > 1 ? 1 : 0)) + offset_;
+    const Eigen::VectorXd result = matrix_ * Eigen::VectorXd(in.col(in.cols() > 1 ? 1 : 0)) +
+                                   (1.0 + offset_growth * step_) * offset_;
     const auto& out_block = output_.blocks().front();
     auto out = output_.values(out_block.model_part, out_block.variable);
     out.setZero();
@@ -55,7 +55,8 @@ class AffineSolver : public SolverWrapper {
   void finalize() override {}
 
   int calls = 0;
-  int poison_at_call = -1;  ///< return NaN at this call
+  int poison_at_call = -1;     ///< return NaN at this call
+  double offset_growth = 0.0;  ///< offset times (1 + offset_growth * step): a moving solution
 
  private:
   std::string name_;
