@@ -105,9 +105,23 @@ class Run {
       iterations_ += record.iterations;
       algorithm_time_ += record.coupler_time;
       if (!options.quiet) print_progress(record, last);
+      print_warnings(record);
       if (case_.state_interval > 0 && step % case_.state_interval == 0) save_state(step);
     }
     save_state(last);
+  }
+
+  /// The first few steps' warnings as they come; all of them go to the summary.
+  void print_warnings(const StepRecord& record) {
+    constexpr int kPrintedSteps = 5;
+    if (record.warnings.empty() || ++steps_with_warnings_ > kPrintedSteps + 1) return;
+    if (steps_with_warnings_ > kPrintedSteps) {
+      fmt::print("warning: more steps with warnings follow: see \"warnings\" in {}\n",
+                 results_path(".summary.json").string());
+      return;
+    }
+    for (const auto& warning : record.warnings)
+      fmt::print("warning: step {}: {}\n", record.step, warning);
   }
 
   /// Between steps only: in the middle of a step the models hold half a step's columns.
@@ -171,6 +185,7 @@ class Run {
   long iterations_ = 0;
   double algorithm_time_ = 0.0;
   bool state_saved_ = false;
+  int steps_with_warnings_ = 0;
 };
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -9,6 +10,24 @@ namespace cocopp {
 
 namespace {
 using Clock = std::chrono::steady_clock;
+
+/// Each distinct note once, in order of first appearance, with "(n times)" when repeated.
+std::vector<std::string> count_repeats(const std::vector<std::string>& notes) {
+  std::vector<std::pair<std::string, int>> counted;
+  for (const auto& note : notes) {
+    auto found = std::find_if(counted.begin(), counted.end(),
+                              [&](const auto& entry) { return entry.first == note; });
+    if (found == counted.end())
+      counted.emplace_back(note, 1);
+    else
+      ++found->second;
+  }
+  std::vector<std::string> result;
+  for (const auto& [note, count] : counted)
+    result.push_back(count == 1 ? note : fmt::format("{} ({} times)", note, count));
+  return result;
+}
+
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
@@ -115,6 +134,7 @@ StepRecord CoupledSolver::solve_step(int step, double time) {
     }
     x = next_input(x, xt, r);
   }
+  record.warnings = count_repeats(take_notes());
   x_.set_data(x);
   predictor_->update(x);
   on_step_end();

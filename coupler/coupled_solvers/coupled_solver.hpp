@@ -63,6 +63,8 @@ class CoupledSolver {
   virtual void on_step_end() {}
   /// Explicit coupling makes one pass per step.
   virtual bool iterates() const { return true; }
+  /// Degenerate situations handled since the last call, for the step's warnings.
+  virtual std::vector<std::string> take_notes() { return {}; }
   /// The type's own part of the state.
   virtual void save_own_state(State&) const {}
   virtual void load_own_state(const State&) {}

@@ -76,6 +76,15 @@ class Ibqn : public CoupledSolver {
     return x + block_update(r);
   }
 
+  std::vector<std::string> take_notes() override {
+    std::vector<std::string> notes;
+    const std::pair<const NamedModel*, const char*> models[] = {{&f_, "model_f"}, {&s_, "model_s"}};
+    for (const auto& [named, key] : models)
+      for (const auto& note : named->model->take_notes())
+        notes.push_back(std::string(key) + " " + named->type + ": " + note);
+    return notes;
+  }
+
   void save_own_state(State& state) const override {
     f_.model->save_state(state.group("model_f"));
     s_.model->save_state(state.group("model_s"));

@@ -36,6 +36,12 @@ class Iqni : public CoupledSolver {
     return x + omega_ * r;
   }
 
+  std::vector<std::string> take_notes() override {
+    std::vector<std::string> notes = model_->take_notes();
+    for (auto& note : notes) note = "model " + model_type_ + ": " + note;
+    return notes;
+  }
+
   void save_own_state(State& state) const override {
     model_->save_state(state.group("model"));
     scaling_.save_state(state.group("scaling"));

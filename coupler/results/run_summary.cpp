@@ -75,6 +75,8 @@ void RunSummary::add_step(const StepRecord& record) {
   iterations_.push_back(record.iterations);
   residuals_.push_back(record.residual_norms);
   if (!record.converged) unconverged_steps_.push_back(record.step);
+  for (const auto& warning : record.warnings)
+    warnings_.push_back("step " + std::to_string(record.step) + ": " + warning);
   wall_time_ += record.wall_time;
   coupler_time_ += record.coupler_time;
   iteration_coupler_time_ += record.coupler_time;
@@ -124,6 +126,7 @@ json RunSummary::to_json() const {
   out["iterations_per_step"] = iterations_;
   out["average_iterations"] = ratio(static_cast<double>(total_iterations), steps);
   out["unconverged_steps"] = unconverged_steps_;
+  out["warnings"] = warnings_;
   out["residual_history"] = residuals_;
   out["wall_time"] = wall_time_;
   out["solver_times"] = solver_times_json();

@@ -40,6 +40,7 @@ class RunSummary {
   std::vector<int> iterations_;
   std::vector<std::vector<double>> residuals_;
   std::vector<int> unconverged_steps_;
+  std::vector<std::string> warnings_;  ///< "step 3: ...", from StepRecord::warnings
 
   bool completed_ = false;
   std::string status_ = "running";

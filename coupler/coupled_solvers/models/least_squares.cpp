@@ -37,6 +37,7 @@ class LeastSquares : public Model {
   int columns() const override { return columns_.size(); }
 
   void save_state(State& state) const override { columns_.save_state(state); }
+  std::vector<std::string> take_notes() override { return columns_.take_notes(); }
   void load_state(const State& state) override { columns_.load_state(state); }
 
  private:

@@ -2,6 +2,8 @@
 // Secant models: approximate the (inverse) Jacobian of the coupled problem from the residual
 // and output differences of past coupling iterations. Used by the quasi-Newton coupled solvers.
 #include <Eigen/Core>
+#include <string>
+#include <vector>
 
 #include "coupler/case/registry.hpp"
 #include "coupler/results/state.hpp"
@@ -29,6 +31,8 @@ class Model {
   /// What the model carries from step to step, at a step boundary (after finalize_step), and
   /// back: a model loaded from a saved state predicts exactly as the one that saved it.
   virtual void save_state(State& state) const = 0;
+  /// Degenerate situations handled since the last call (dropped zero or dependent columns).
+  virtual std::vector<std::string> take_notes() { return {}; }
   virtual void load_state(const State& state) = 0;
 };
 

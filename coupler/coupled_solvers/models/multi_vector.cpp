@@ -72,6 +72,8 @@ class MultiVector : public Model {
   /// The current step's columns plus those of previous steps still held in J_prev.
   int columns() const override { return current_.size() + previous_columns(); }
 
+  std::vector<std::string> take_notes() override { return current_.take_notes(); }
+
   /// At a step boundary the current step has no columns: J_prev is the whole state.
   void save_state(State& state) const override { save_previous(state); }
   void load_state(const State& state) override {

@@ -17,6 +17,10 @@ ColumnFilter ColumnFilter::read(const Settings& s) {
 
 void SecantColumns::insert(Eigen::VectorXd v, Eigen::VectorXd w) {
   const double norm = v.norm();
+  if (norm == 0.0) {
+    notes_.push_back("a repeated residual (zero residual difference) gave no secant column");
+    return;
+  }
   columns_.push_front({std::move(v), std::move(w), 0});
   norms_.push_front(norm);
   if (!qr_.insert_front(columns_.front().v)) refactorize();
@@ -61,6 +65,9 @@ void SecantColumns::refactorize() {
     }
     columns_.erase(columns_.begin() + std::ptrdiff_t(i));
     norms_.erase(norms_.begin() + std::ptrdiff_t(i));
+    notes_.push_back(
+        "a secant column numerically dependent on newer ones (more columns than unknowns, or a "
+        "repeated direction) was dropped");
   }
 }
 

@@ -9,6 +9,9 @@
 // nearly dependent columns make way for newer ones.
 #include <Eigen/Core>
 #include <deque>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "coupler/coupled_solvers/models/qr_factorization.hpp"
 #include "coupler/results/state.hpp"
@@ -45,6 +48,9 @@ class SecantColumns {
   /// Add a column at the back (oldest) as it was saved, without filtering: for restoring.
   void restore(Column column);
 
+  /// Degenerate columns dropped since the last call, as readable notes (for warnings).
+  std::vector<std::string> take_notes() { return std::exchange(notes_, {}); }
+
   /// c = V^+ y = argmin ||V c - y||.
   Eigen::VectorXd coefficients(const Eigen::VectorXd& y) const { return qr_.solve(y); }
   /// W c and V c.
@@ -72,6 +78,7 @@ class SecantColumns {
   std::deque<Column> columns_;  ///< newest first, matching the columns of qr_
   std::deque<double> norms_;    ///< ||v|| of each column
   QrFactorization qr_;
+  std::vector<std::string> notes_;
 };
 
 }  // namespace cocopp

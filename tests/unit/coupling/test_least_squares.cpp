@@ -64,6 +64,11 @@ TEST(LeastSquares, RepeatedResidualIsFilteredNotNaN) {
   EXPECT_FALSE(model->is_ready());
   EXPECT_EQ(model->columns(), 0);
   EXPECT_TRUE(model->predict(-r).allFinite());
+  // The coupled solver turns this into a warning of the step.
+  const auto notes = model->take_notes();
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("repeated residual"), std::string::npos) << notes[0];
+  EXPECT_TRUE(model->take_notes().empty());
 }
 
 TEST(LeastSquares, DependentColumnsAreFilteredKeepingTheNewest) {

@@ -270,6 +270,10 @@ TEST(MultiVector, MoreColumnsThanRowsAreFiltered) {
       r_old = r;
       xt_old = xt;
     }
+    bool warned = false;
+    for (const auto& note : model->take_notes())
+      warned = warned || note.find("more columns than unknowns") != std::string::npos;
+    EXPECT_TRUE(warned) << type;
     model->finalize_step();
     EXPECT_TRUE(model->predict(vec({1, -1, 2})).allFinite()) << type;
   }
