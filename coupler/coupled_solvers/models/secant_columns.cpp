@@ -128,7 +128,7 @@ namespace {
 
 template <class Member>
 Eigen::MatrixXd as_matrix(const std::deque<SecantColumns::Column>& columns, Member member) {
-  Eigen::MatrixXd m(columns.front().v.size(), Eigen::Index(columns.size()));
+  Eigen::MatrixXd m((columns.front().*member).size(), Eigen::Index(columns.size()));
   for (std::size_t i = 0; i < columns.size(); ++i) m.col(Eigen::Index(i)) = columns[i].*member;
   return m;
 }

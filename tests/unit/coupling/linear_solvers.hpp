@@ -21,22 +21,37 @@ inline std::shared_ptr<const ModelPart> line_model_part(int n) {
   return part;
 }
 
-/// Maps `input_variable` to `output_variable` affinely on the first component.
-class AffineSolver : public SolverWrapper {
+/// The parts every in-process test solver shares: a name, fixed interfaces, no-op steps.
+class InProcessSolver : public SolverWrapper {
  public:
-  AffineSolver(std::string name, std::shared_ptr<const ModelPart> part, std::string input,
-               std::string output, Eigen::MatrixXd matrix, Eigen::VectorXd offset)
-      : name_(std::move(name)),
-        input_({{part, {std::move(input)}}}),
-        output_({{part, {std::move(output)}}}),
-        matrix_(std::move(matrix)),
-        offset_(std::move(offset)) {}
+  InProcessSolver(std::string name, Interface input, Interface output)
+      : name_(std::move(name)), input_(std::move(input)), output_(std::move(output)) {}
 
   const std::string& name() const override { return name_; }
   void initialize() override {}
   const Interface& input_interface() const override { return input_; }
   const Interface& output_interface() const override { return output_; }
   void initialize_step(int step, double) override { step_ = step; }
+  void finalize_step() override {}
+  void output_step() override {}
+  void finalize() override {}
+
+ protected:
+  std::string name_;
+  Interface input_, output_;
+  int step_ = 0;
+};
+
+/// Maps `input_variable` to `output_variable` affinely on the first component.
+class AffineSolver : public InProcessSolver {
+ public:
+  AffineSolver(std::string name, std::shared_ptr<const ModelPart> part, std::string input,
+               std::string output, Eigen::MatrixXd matrix, Eigen::VectorXd offset)
+      : InProcessSolver(std::move(name), Interface({{part, {std::move(input)}}}),
+                        Interface({{part, {std::move(output)}}})),
+        matrix_(std::move(matrix)),
+        offset_(std::move(offset)) {}
+
   const Interface& solve(const Interface& input) override {
     ++calls;
     const auto& in_block = input.blocks().front();
@@ -50,54 +65,32 @@ class AffineSolver : public SolverWrapper {
     if (poison_at_call == calls) out(0, 0) = std::numeric_limits<double>::quiet_NaN();
     return output_;
   }
-  void finalize_step() override {}
-  void output_step() override {}
-  void finalize() override {}
 
   int calls = 0;
   int poison_at_call = -1;     ///< return NaN at this call
   double offset_growth = 0.0;  ///< offset times (1 + offset_growth * step): a moving solution
 
  private:
-  std::string name_;
-  Interface input_, output_;
   Eigen::MatrixXd matrix_;
   Eigen::VectorXd offset_;
-  int step_ = 0;
 };
-
-}  // namespace cocopp::testing
-
-namespace cocopp::testing {
 
 /// output = matrix * input + offset on the whole flattened interface vectors, whatever their
 /// variables: for problems whose interfaces carry several variables.
-class FlatAffineSolver : public SolverWrapper {
+class FlatAffineSolver : public InProcessSolver {
  public:
   FlatAffineSolver(std::string name, Interface input, Interface output, Eigen::MatrixXd matrix,
                    Eigen::VectorXd offset)
-      : name_(std::move(name)),
-        input_(std::move(input)),
-        output_(std::move(output)),
+      : InProcessSolver(std::move(name), std::move(input), std::move(output)),
         matrix_(std::move(matrix)),
         offset_(std::move(offset)) {}
 
-  const std::string& name() const override { return name_; }
-  void initialize() override {}
-  const Interface& input_interface() const override { return input_; }
-  const Interface& output_interface() const override { return output_; }
-  void initialize_step(int, double) override {}
   const Interface& solve(const Interface& input) override {
     output_.set_data(matrix_ * input.data() + offset_);
     return output_;
   }
-  void finalize_step() override {}
-  void output_step() override {}
-  void finalize() override {}
 
  private:
-  std::string name_;
-  Interface input_, output_;
   Eigen::MatrixXd matrix_;
   Eigen::VectorXd offset_;
 };
