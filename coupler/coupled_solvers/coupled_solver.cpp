@@ -129,6 +129,7 @@ StepRecord CoupledSolver::solve_step(int step, double time) {
     }
     criterion_->update(r);
     if (criterion_->is_satisfied()) {
+      on_converged(x, xt, r);
       tolerance_met = criterion_->tolerance_met();
       break;
     }

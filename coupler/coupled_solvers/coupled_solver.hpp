@@ -56,6 +56,10 @@ class CoupledSolver {
   /// the residual r = x~ - x.
   virtual Eigen::VectorXd next_input(const Eigen::VectorXd& x, const Eigen::VectorXd& xt,
                                      const Eigen::VectorXd& r) = 0;
+  /// The iteration that met the convergence criterion (no next_input follows): its secant
+  /// information is still worth keeping for the next steps.
+  virtual void on_converged(const Eigen::VectorXd& /*x*/, const Eigen::VectorXd& /*xt*/,
+                            const Eigen::VectorXd& /*r*/) {}
   /// Hooks for methods with memory across iterations and steps; on_initialized() runs once
   /// the interfaces x() and y() are known.
   virtual void on_initialized() {}

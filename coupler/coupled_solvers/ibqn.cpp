@@ -65,12 +65,14 @@ class Ibqn : public CoupledSolver {
     s_.model->finalize_step();
   }
 
+  void on_converged(const Eigen::VectorXd& x, const Eigen::VectorXd& xt,
+                    const Eigen::VectorXd&) override {
+    add_to_models(x, xt);
+  }
+
   Eigen::VectorXd next_input(const Eigen::VectorXd& x, const Eigen::VectorXd& xt,
                              const Eigen::VectorXd& r) override {
-    // y() holds F(x) of this iteration: the base class stores it before calling S.
-    const Eigen::VectorXd& y = this->y().data();
-    f_.model->add(scaling_.apply(kX, x), y);
-    s_.model->add(scaling_.apply(kY, y), xt);
+    add_to_models(x, xt);
     // Filtering may leave a model without columns: then relax as in the first iteration.
     if (!f_.has_information() || !s_.has_information()) return x + omega_ * r;
     return x + block_update(r);
@@ -102,6 +104,13 @@ class Ibqn : public CoupledSolver {
   }
 
  private:
+  void add_to_models(const Eigen::VectorXd& x, const Eigen::VectorXd& xt) {
+    // y() holds F(x) of this iteration: the base class stores it before calling S.
+    const Eigen::VectorXd& y = this->y().data();
+    f_.model->add(scaling_.apply(kX, x), y);
+    s_.model->add(scaling_.apply(kY, y), xt);
+  }
+
   /// dx with (I - S'F') dx = r. A GMRES that stops at maximum_iterations still returns the
   /// best dx of its Krylov space; the coupling iteration corrects what remains.
   Eigen::VectorXd block_update(const Eigen::VectorXd& r) {

@@ -24,6 +24,11 @@ class Iqni : public CoupledSolver {
   void on_step_start() override { model_->initialize_step(); }
   void on_step_end() override { model_->finalize_step(); }
 
+  void on_converged(const Eigen::VectorXd&, const Eigen::VectorXd& xt,
+                    const Eigen::VectorXd& r) override {
+    model_->add(scaling_.apply(0, r), xt);
+  }
+
   Eigen::VectorXd next_input(const Eigen::VectorXd& x, const Eigen::VectorXd& xt,
                              const Eigen::VectorXd& r) override {
     const Eigen::VectorXd weighted_r = scaling_.apply(0, r);

@@ -3,6 +3,7 @@
 // affine "structure" x = B y, on one model part of n points. The coupled problem
 // x = B (A x + b) has the exact solution x* = (I - B A)^-1 B b.
 #include <Eigen/Dense>
+#include <cmath>
 #include <functional>
 #include <limits>
 
@@ -57,7 +58,7 @@ class AffineSolver : public InProcessSolver {
     const auto& in_block = input.blocks().front();
     const auto in = input.values(in_block.model_part, in_block.variable);
     const Eigen::VectorXd result = matrix_ * Eigen::VectorXd(in.col(in.cols() > 1 ? 1 : 0)) +
-                                   (1.0 + offset_growth * step_) * offset_;
+                                   (1.0 + offset_variation * std::sin(step_)) * offset_;
     const auto& out_block = output_.blocks().front();
     auto out = output_.values(out_block.model_part, out_block.variable);
     out.setZero();
@@ -67,8 +68,9 @@ class AffineSolver : public InProcessSolver {
   }
 
   int calls = 0;
-  int poison_at_call = -1;     ///< return NaN at this call
-  double offset_growth = 0.0;  ///< offset times (1 + offset_growth * step): a moving solution
+  int poison_at_call = -1;  ///< return NaN at this call
+  /// offset times (1 + offset_variation sin(step)): a solution no predictor foresees exactly
+  double offset_variation = 0.0;
 
  private:
   Eigen::MatrixXd matrix_;
