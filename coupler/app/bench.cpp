@@ -334,9 +334,10 @@ void merge_into_input_file(const fs::path& file, const std::vector<const SolverI
                       << out.c_str() << "\n";
 }
 
-/// Apply solver_inputs to the input files of the solvers of the run's case.
-void apply_solver_inputs(const fs::path& case_file, const std::vector<SolverInput>& inputs) {
-  if (inputs.empty()) return;
+/// Apply solver_inputs to the input files of the solvers of the run's case. Returns, for the
+/// notes of a run that fails, which files were changed and from where.
+std::string apply_solver_inputs(const fs::path& case_file, const std::vector<SolverInput>& inputs) {
+  if (inputs.empty()) return "";
   const Case c = load_case(case_file);
   std::vector<std::string> names;
   for (const auto& solver : c.solvers) names.push_back(solver->name());
@@ -346,6 +347,7 @@ void apply_solver_inputs(const fs::path& case_file, const std::vector<SolverInpu
           fmt::format("{}: solver_inputs: the base case has no solver named '{}'{}; "
                       "its solvers are {}",
                       input.where, input.solver, did_you_mean(input.solver, names), join(names)));
+  std::string changed;
   for (const auto& solver : c.solvers) {
     std::vector<const SolverInput*> mine;
     for (const SolverInput& input : inputs)
@@ -358,7 +360,12 @@ void apply_solver_inputs(const fs::path& case_file, const std::vector<SolverInpu
           "its own 'command'); solver_inputs need a solver type with an input_file",
           mine.front()->where, solver->name()));
     merge_into_input_file(file, mine);
+    std::vector<std::string> wheres;
+    for (const SolverInput* input : mine) wheres.push_back(input->where);
+    changed += fmt::format("{}{} (solver_inputs.{} of {})", changed.empty() ? "" : ", ",
+                           file.string(), solver->name(), join(wheres));
   }
+  return changed;
 }
 
 std::vector<SolverInput> solver_inputs(const BenchFile& bench, const BenchCase& bench_case,
@@ -370,11 +377,18 @@ std::vector<SolverInput> solver_inputs(const BenchFile& bench, const BenchCase& 
   return all;
 }
 
+struct PlannedRun {
+  std::string case_name;
+  std::string name;
+  fs::path case_file;
+  std::string changed_inputs;  ///< input files changed by solver_inputs, and from where
+};
+
 /// Write <output_directory>/[<case>/]<name>/case.yaml next to a fresh copy of the base case's
 /// files, with the solver inputs changed as the bench file says.
-fs::path prepare_run(const BenchFile& bench, const YAML::Node& base_case,
-                     const BenchCase& bench_case, const std::string& name,
-                     const YAML::Node& coupled_solver, const Changes& run) {
+PlannedRun prepare_run(const BenchFile& bench, const YAML::Node& base_case,
+                       const BenchCase& bench_case, const std::string& name,
+                       const YAML::Node& coupled_solver, const Changes& run) {
   const fs::path dir = bench.output_directory / bench_case.name / name;
   fs::remove_all(dir);
   copy_case_directory(bench.base_case.parent_path(), dir, paths_not_to_copy(bench, base_case));
@@ -392,8 +406,8 @@ fs::path prepare_run(const BenchFile& bench, const YAML::Node& base_case,
   const fs::path file = dir / "case.yaml";
   std::ofstream(file) << "# written by cocopp bench from " << bench.file.string() << "\n"
                       << out.c_str() << "\n";
-  apply_solver_inputs(file, solver_inputs(bench, bench_case, run));
-  return file;
+  return {bench_case.name, name, file,
+          apply_solver_inputs(file, solver_inputs(bench, bench_case, run))};
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -731,12 +745,6 @@ void plot(const BenchFile& bench) {
 // ---------------------------------------------------------------------------------------------
 // The bench
 
-struct PlannedRun {
-  std::string case_name;
-  std::string name;
-  fs::path case_file;
-};
-
 /// Write every case first and validate it, so that a mistake in the last variant is found
 /// before the first run, not an hour later.
 std::vector<PlannedRun> prepare(const BenchFile& bench) {
@@ -745,16 +753,13 @@ std::vector<PlannedRun> prepare(const BenchFile& bench) {
   std::vector<PlannedRun> runs;
   for (const BenchCase& c : bench.cases) {
     if (bench.reference == ReferenceKind::kComputed)
-      runs.push_back(
-          {c.name, kReferenceName,
-           prepare_run(bench, base, c, kReferenceName,
-                       reference_coupled_solver(base["coupled_solver"], bench.reference_tolerance),
-                       Changes{})});
+      runs.push_back(prepare_run(
+          bench, base, c, kReferenceName,
+          reference_coupled_solver(base["coupled_solver"], bench.reference_tolerance), Changes{}));
     for (const Variant& v : bench.variants)
-      runs.push_back(
-          {c.name, v.name,
-           prepare_run(bench, base, c, v.name,
-                       merge_coupled_solver(base["coupled_solver"], v.coupled_solver), v.changes)});
+      runs.push_back(prepare_run(bench, base, c, v.name,
+                                 merge_coupled_solver(base["coupled_solver"], v.coupled_solver),
+                                 v.changes));
   }
   for (const PlannedRun& run : runs) {
     const Case c = load_case(run.case_file);
@@ -773,6 +778,9 @@ bool run_all(const std::vector<PlannedRun>& runs, std::vector<RunResult>& rows) 
     std::fflush(stdout);
     run_case(runs[i].case_file, RunOptions{true});
     read_summary(row, runs[i].case_file.parent_path() / "results" / "case.summary.json");
+    // A solver names its input file relative to its directory: say which copy it read.
+    if (row.status == "solver_failed" && !runs[i].changed_inputs.empty())
+      add_note(row, "input changed by the bench: " + runs[i].changed_inputs);
     rows.push_back(row);
     if (row.status == "interrupted") return false;
     if (row.name == kReferenceName && row.steps_completed == 0) {
