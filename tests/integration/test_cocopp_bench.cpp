@@ -140,7 +140,7 @@ variants:
 }
 
 /// A tiny stability sweep: two cases x three variants, no reference. Gauss-Seidel must diverge
-/// on the light wall (the linear analysis gives 17 unstable modes at rho_s = 500) and converge at
+/// on the light wall (the linear analysis gives 12 unstable modes at rho_s = 500) and converge at
 /// dt = 1e-2 (|lambda_1| = 0.08: no unstable mode); IQN-ILS converges on both; an iteration
 /// limit of 2 leaves every step unconverged.
 const std::string kSweep = R"(base_case: flow_structure/case.yaml
@@ -222,6 +222,22 @@ TEST(CocoppBench, SweepsCasesWithSolverInputsWithoutReference) {
   EXPECT_FALSE(fs::exists(out / "bench.png"));
   const std::string csv = read_text(out / "bench.csv");
   EXPECT_NE(csv.find(",light,diverged,residual growth in step 1,0"), std::string::npos) << csv;
+
+  // The linear analysis next to the sweep (scripts/tube_modes.py). By hand: at rho_s = 500,
+  // omega_r^2 dt^2 = 3e5 / (500 * 0.005^2) * 1e-8 = 0.24 and |lambda_j| = 2 * 1000 /
+  // (500 * 1e-3 * 0.005 * (j pi / 0.05)^2) / 1.24 = 163.4 / j^2: modes 1..12 are unstable; at
+  // dt = 1e-2 (rho_s = 1200), |lambda_1| = 84.4 / (1 + 1e7 * 1e-4) = 0.0843: none. Gauss-Seidel
+  // diverged in the first case and converged in the second.
+  const auto modes = run_command(
+      "/usr/bin/python3 " COCOPP_TEST_SOURCE_DIR "/scripts/tube_modes.py " + out.string());
+  ASSERT_EQ(modes.exit_code, 0) << modes.output;
+  EXPECT_NE(
+      modes.output.find("| light | 0.5 | 300000 | 0.0001 | 0.05 | 163 | 12 | **div.** step 1 |"),
+      std::string::npos)
+      << modes.output;
+  EXPECT_NE(modes.output.find("| dt_1e-2 | 1.2 | 300000 | 0.01 | 0.05 | 0.0843 | 0 | "),
+            std::string::npos)
+      << modes.output;
   fs::remove_all(dir);
 }
 
