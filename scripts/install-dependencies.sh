@@ -8,7 +8,7 @@ packages=(
   libeigen3-dev libyaml-cpp-dev libhdf5-dev hdf5-tools
   libcli11-dev libfmt-dev nlohmann-json3-dev libnanoflann-dev
   googletest libgtest-dev libgmock-dev libbenchmark-dev
-  python3-h5py python3-matplotlib python3-numpy
+  python3-h5py python3-matplotlib python3-numpy python3-yaml
   clang-format
 )
 

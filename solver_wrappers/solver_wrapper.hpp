@@ -31,6 +31,9 @@ class SolverWrapper {
   virtual std::string started() const { return name(); }
   /// Validate what can be validated without running (input files exist, executable found).
   virtual void check() const {}
+  /// The solver's own input file (YAML), if the wrapper knows it: empty otherwise. Tools that
+  /// change a solver's parameters (cocopp bench's solver_inputs) edit this file.
+  virtual std::filesystem::path input_file() const { return {}; }
 
   /// Start the solver and learn its interfaces (layout and initial values).
   virtual void initialize() = 0;

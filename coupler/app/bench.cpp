@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "coupler/app/bench_inputs.hpp"
 #include "coupler/app/case.hpp"
 #include "coupler/app/run.hpp"
 #include "coupler/case/settings.hpp"
@@ -29,24 +30,41 @@ namespace fs = std::filesystem;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 const char* const kReferenceName = "reference";
 
+/// What the bench file's top level, a case or a variant changes in the base case.
+struct Changes {
+  YAML::Node settings;  ///< merged into the base case's settings (may be null)
+  std::vector<SolverInput> solver_inputs;
+};
+
 struct Variant {
   std::string name;
   YAML::Node coupled_solver;  ///< merged into the base case's coupled_solver (may be null)
-  YAML::Node settings;        ///< merged into the base case's settings (may be null)
+  Changes changes;
 };
+
+/// One problem of a sweep (`cases`); a bench file without `cases` has one case without name.
+struct BenchCase {
+  std::string name;
+  Changes changes;
+};
+
+enum class ReferenceKind { kComputed, kGiven, kNone };
 
 struct BenchFile {
   fs::path file;
   fs::path base_case;
   fs::path output_directory;
-  fs::path reference_results;  ///< empty: the reference is computed
+  ReferenceKind reference = ReferenceKind::kComputed;
+  fs::path reference_results;  ///< kGiven
   double reference_tolerance = 1e-10;
-  YAML::Node settings;  ///< merged into the settings of every run, the reference included
+  Changes changes;  ///< applied to every run, the references included
+  std::vector<BenchCase> cases;
   std::vector<Variant> variants;
 };
 
 /// One row of the table, bench.csv and bench.json.
 struct RunResult {
+  std::string case_name;  ///< empty without `cases`
   std::string name;
   std::string coupled_solver;
   std::string status = "not_run";
@@ -61,6 +79,10 @@ struct RunResult {
   double displacement_error = kNaN;
   double pressure_error = kNaN;
   std::string note;
+  /// converged, stalled (steps accepted at the iteration limit), diverged, solver_failed, ...
+  std::string outcome;
+  std::string reason;  ///< why it diverged or stalled, e.g. "residual growth in step 3"
+  int unconverged_steps = 0;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -75,18 +97,73 @@ YAML::Node raw_mapping(const Settings& s, const std::string& key) {
   return YAML::Clone(node);
 }
 
+/// `solver_inputs: {<solver name>: {<key>: <value>, ...}, ...}`; the names are checked against
+/// the base case's solvers when the runs are prepared.
+std::vector<SolverInput> read_solver_inputs(const Settings& s) {
+  std::vector<SolverInput> inputs;
+  if (!s.has("solver_inputs")) return inputs;
+  const Settings block = s.child("solver_inputs");
+  for (const auto& entry : block.node()) {
+    const std::string solver = entry.first.as<std::string>();
+    block.allow(solver);
+    if (!entry.second.IsMap())
+      block.fail(solver, "must be a mapping: keys of the solver's input file and their values");
+    inputs.push_back({solver, YAML::Clone(entry.second), block.where(solver)});
+  }
+  return inputs;
+}
+
+Changes read_changes(const Settings& s) {
+  return {raw_mapping(s, "settings"), read_solver_inputs(s)};
+}
+
+/// A case or variant name: it becomes a directory name and a table entry.
+std::string read_name(const Settings& s, std::set<std::string>& names) {
+  const std::string name = s.required<std::string>("name");
+  if (!std::regex_match(name, std::regex("[A-Za-z0-9_.+-]+")) || name == "." || name == "..")
+    s.fail("name", "'" + name + "' must be letters, digits and _ . + - only");
+  if (name == kReferenceName)
+    s.fail("name", "'reference' is the name of the computed reference run; choose another");
+  if (!names.insert(name).second) s.fail("name", "'" + name + "' is used twice");
+  return name;
+}
+
 Variant read_variant(const Settings& s, std::set<std::string>& names) {
   Variant v;
-  v.name = s.required<std::string>("name");
-  // The name becomes a directory name and a table entry.
-  if (!std::regex_match(v.name, std::regex("[A-Za-z0-9_.+-]+")) || v.name == "." || v.name == "..")
-    s.fail("name", "'" + v.name + "' must be letters, digits and _ . + - only");
-  if (v.name == kReferenceName)
-    s.fail("name", "'reference' is the name of the computed reference run; choose another");
-  if (!names.insert(v.name).second) s.fail("name", "'" + v.name + "' is used twice");
+  v.name = read_name(s, names);
   v.coupled_solver = raw_mapping(s, "coupled_solver");
-  v.settings = raw_mapping(s, "settings");
+  v.changes = read_changes(s);
   return v;
+}
+
+BenchCase read_case(const Settings& s, std::set<std::string>& names) {
+  BenchCase c;
+  c.name = read_name(s, names);
+  c.changes = read_changes(s);
+  return c;
+}
+
+/// `reference: none`, `reference: {results: file}` or `reference: {tolerance: t}` (default).
+void read_reference(const Settings& root, BenchFile& b) {
+  const YAML::Node node = root.node()["reference"];
+  if (node && node.IsScalar()) {
+    root.allow("reference");
+    if (node.as<std::string>() != "none")
+      root.fail("reference", "must be 'none' or a mapping with 'results' or 'tolerance'");
+    b.reference = ReferenceKind::kNone;
+    return;
+  }
+  const Settings reference = root.child_or_empty("reference");
+  if (reference.has("results")) {
+    b.reference = ReferenceKind::kGiven;
+    b.reference_results = root.base_directory() / reference.required<std::string>("results");
+    if (!fs::is_regular_file(b.reference_results))
+      reference.fail("results", "no such file: " + b.reference_results.string());
+    if (reference.has("tolerance"))
+      reference.fail("tolerance", "give either 'results' or 'tolerance', not both");
+  } else {
+    b.reference_tolerance = reference.get_in_range("tolerance", 1e-10, Range::positive());
+  }
 }
 
 BenchFile read_bench_file(const fs::path& file) {
@@ -98,58 +175,24 @@ BenchFile read_bench_file(const fs::path& file) {
   if (!fs::is_regular_file(b.base_case))
     root.fail("base_case", "no such file: " + b.base_case.string());
   b.output_directory = dir / root.get<std::string>("output_directory", "bench_results");
-  const Settings reference = root.child_or_empty("reference");
-  if (reference.has("results")) {
-    b.reference_results = dir / reference.required<std::string>("results");
-    if (!fs::is_regular_file(b.reference_results))
-      reference.fail("results", "no such file: " + b.reference_results.string());
-    if (reference.has("tolerance"))
-      reference.fail("tolerance", "give either 'results' or 'tolerance', not both");
-  } else {
-    b.reference_tolerance = reference.get_in_range("tolerance", 1e-10, Range::positive());
-  }
-  b.settings = raw_mapping(root, "settings");
+  read_reference(root, b);
+  b.changes = read_changes(root);
   std::set<std::string> names;
   for (const Settings& v : root.list("variants")) b.variants.push_back(read_variant(v, names));
   if (b.variants.empty()) root.fail("variants", "needs at least one variant");
+  if (root.has("cases")) {
+    std::set<std::string> case_names;
+    for (const Settings& c : root.list("cases")) b.cases.push_back(read_case(c, case_names));
+    if (b.cases.empty()) root.fail("cases", "needs at least one case (or leave 'cases' out)");
+  } else {
+    b.cases.push_back(BenchCase{});  // the base case as it is
+  }
   root.check_unused_keys();
   return b;
 }
 
 // ---------------------------------------------------------------------------------------------
 // Building the case of one run
-
-bool other_type(const YAML::Node& base, const YAML::Node& override) {
-  return base["type"] && override["type"] &&
-         base["type"].as<std::string>() != override["type"].as<std::string>();
-}
-
-/// Keys given in `override` replace those of `base`, recursively for mappings; the rest of
-/// `base` is kept. Lists are replaced whole, and so is a mapping of another `type` (the keys
-/// of an `ls` model mean nothing to an `mvmf` model).
-YAML::Node deep_merge(const YAML::Node& base, const YAML::Node& override) {
-  if (!override || override.IsNull()) return YAML::Clone(base);
-  if (!base || !base.IsMap() || !override.IsMap() || other_type(base, override))
-    return YAML::Clone(override);
-  YAML::Node out = YAML::Clone(base);
-  for (const auto& entry : override) {
-    const std::string key = entry.first.as<std::string>();
-    const YAML::Node old = base[key];
-    out[key] = old ? deep_merge(old, entry.second) : YAML::Clone(entry.second);
-  }
-  return out;
-}
-
-/// A variant of another coupled-solver type keeps only the keys every coupled solver reads
-/// (the base's model or omega would be unknown keys of, say, aitken).
-YAML::Node merge_coupled_solver(const YAML::Node& base, const YAML::Node& override) {
-  if (!override || !base || !other_type(base, override)) return deep_merge(base, override);
-  YAML::Node common(YAML::NodeType::Map);
-  common["type"] = YAML::Clone(override["type"]);  // first, for whoever reads the case
-  for (const char* key : {"predictor", "convergence_criterion", "divergence"})
-    if (base[key]) common[key] = YAML::Clone(base[key]);
-  return deep_merge(common, override);
-}
 
 /// The base case's coupled solver with a tight tolerance: a converged solution to compare with.
 YAML::Node reference_coupled_solver(const YAML::Node& base, double tolerance) {
@@ -222,15 +265,36 @@ void check_working_directories(const YAML::Node& base_case, const fs::path& base
   }
 }
 
-/// Write <output_directory>/<name>/case.yaml next to a fresh copy of the base case's files.
-fs::path prepare_run(const BenchFile& bench, const YAML::Node& base_case, const std::string& name,
-                     const YAML::Node& coupled_solver, const YAML::Node& settings) {
-  const fs::path dir = bench.output_directory / name;
+std::vector<SolverInput> solver_inputs(const BenchFile& bench, const BenchCase& bench_case,
+                                       const Changes& run) {
+  std::vector<SolverInput> all = bench.changes.solver_inputs;
+  all.insert(all.end(), bench_case.changes.solver_inputs.begin(),
+             bench_case.changes.solver_inputs.end());
+  all.insert(all.end(), run.solver_inputs.begin(), run.solver_inputs.end());
+  return all;
+}
+
+struct PlannedRun {
+  std::string case_name;
+  std::string name;
+  fs::path case_file;
+  std::string changed_inputs;  ///< input files changed by solver_inputs, and from where
+};
+
+/// Write <output_directory>/[<case>/]<name>/case.yaml next to a fresh copy of the base case's
+/// files, with the solver inputs changed as the bench file says.
+PlannedRun prepare_run(const BenchFile& bench, const YAML::Node& base_case,
+                       const BenchCase& bench_case, const std::string& name,
+                       const YAML::Node& coupled_solver, const Changes& run) {
+  const fs::path dir = bench.output_directory / bench_case.name / name;
   fs::remove_all(dir);
   copy_case_directory(bench.base_case.parent_path(), dir, paths_not_to_copy(bench, base_case));
   YAML::Node c = YAML::Clone(base_case);
   c["coupled_solver"] = coupled_solver;
-  YAML::Node s = deep_merge(deep_merge(base_case["settings"], bench.settings), settings);
+  // Nested, not by assigning to a YAML::Node: that would write through into base_case.
+  YAML::Node s = deep_merge(deep_merge(deep_merge(base_case["settings"], bench.changes.settings),
+                                       bench_case.changes.settings),
+                            run.settings);
   s["results_directory"] = "results";
   s["results_name"] = "case";
   c["settings"] = s;
@@ -239,7 +303,8 @@ fs::path prepare_run(const BenchFile& bench, const YAML::Node& base_case, const 
   const fs::path file = dir / "case.yaml";
   std::ofstream(file) << "# written by cocopp bench from " << bench.file.string() << "\n"
                       << out.c_str() << "\n";
-  return file;
+  return {bench_case.name, name, file,
+          apply_solver_inputs(file, solver_inputs(bench, bench_case, run))};
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -386,6 +451,31 @@ void compute_errors(RunResult& result, const fs::path& results_file, const Resul
   if (std::isnan(result.displacement_error)) add_note(result, "no step in common with reference");
 }
 
+/// converged / stalled / diverged (why) / solver_failed, from the summary's status and message.
+/// The reason of a divergence is read from the coupler's message (coupled_solver.cpp): a
+/// non-finite value a solver returned or a residual that became non-finite, else the residual's
+/// growth (by the factor or persistently).
+void classify(RunResult& result, int failed_step) {
+  if (result.status == "completed") {
+    result.outcome = result.unconverged_steps == 0 ? "converged" : "stalled";
+    if (result.unconverged_steps > 0)
+      result.reason = fmt::format("{} of {} steps at the iteration limit", result.unconverged_steps,
+                                  result.steps_completed);
+    return;
+  }
+  result.outcome = result.status;
+  if (result.status == "diverged") {
+    const std::string& m = result.message;
+    const bool non_finite = m.find("non-finite") != std::string::npos ||
+                            m.find("to nan") != std::string::npos ||
+                            m.find("to inf") != std::string::npos;
+    result.reason = fmt::format("{} in step {}",
+                                non_finite ? "non-finite values" : "residual growth", failed_step);
+  } else if (result.status == "solver_failed") {
+    result.reason = fmt::format("solver failure after {} steps", result.steps_completed);
+  }
+}
+
 /// Fill a row from the summary JSON of a run.
 void read_summary(RunResult& result, const fs::path& file) {
   std::ifstream in(file);
@@ -409,9 +499,11 @@ void read_summary(RunResult& result, const fs::path& file) {
   }
   result.solver_calls = 2 * total;  // one call of each solver per coupling iteration
   const auto unconverged = j.value("unconverged_steps", std::vector<int>{});
+  result.unconverged_steps = static_cast<int>(unconverged.size());
   if (!unconverged.empty())
     add_note(result, fmt::format("{} step{} accepted unconverged at the iteration limit",
                                  unconverged.size(), unconverged.size() == 1 ? "" : "s"));
+  classify(result, j.value("timestep_start", 0) + result.steps_completed + 1);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -421,22 +513,37 @@ std::string format_number(double value, const char* format = "{:.3g}") {
   return std::isfinite(value) ? fmt::format(fmt::runtime(format), value) : "-";
 }
 
+std::string label(const RunResult& r) {
+  return r.case_name.empty() ? r.name : r.case_name + "/" + r.name;
+}
+
+/// "converged", "stalled 20", "diverged"; the reasons follow below the table.
+std::string short_outcome(const RunResult& r) {
+  return r.outcome == "stalled" ? fmt::format("stalled {}", r.unconverged_steps) : r.outcome;
+}
+
 void print_table(const std::vector<RunResult>& rows) {
-  std::size_t width = 7;
-  for (const auto& r : rows) width = std::max(width, r.name.size());
-  fmt::print("\n{:<{}}  {:<12} {:<13} {:>5} {:>7} {:>6} {:>7} {:>9} {:>11} {:>10} {:>10}\n",
-             "variant", width, "solver", "status", "steps", "avg it", "max it", "calls", "wall [s]",
-             "coupler [s]", "displ err", "press err");
+  std::size_t case_width = 0, width = 7;
+  for (const auto& r : rows) {
+    case_width = std::max(case_width, r.case_name.size());
+    width = std::max(width, r.name.size());
+  }
+  if (case_width > 0) case_width = std::max<std::size_t>(case_width, 4) + 2;
+  const std::string case_header = case_width > 0 ? "case" : "";
+  fmt::print("\n{:<{}}{:<{}}  {:<12} {:<13} {:>5} {:>7} {:>6} {:>7} {:>9} {:>11} {:>10} {:>10}\n",
+             case_header, case_width, "variant", width, "solver", "status", "steps", "avg it",
+             "max it", "calls", "wall [s]", "coupler [s]", "displ err", "press err");
   for (const auto& r : rows)
-    fmt::print("{:<{}}  {:<12} {:<13} {:>5} {:>7} {:>6} {:>7} {:>9} {:>11} {:>10} {:>10}\n", r.name,
-               width, r.coupled_solver, r.status, r.steps_completed,
-               format_number(r.average_iterations, "{:.2f}"), r.maximum_iterations, r.solver_calls,
-               format_number(r.wall_time, "{:.3f}"), format_number(r.coupler_time, "{:.4f}"),
-               format_number(r.displacement_error), format_number(r.pressure_error));
+    fmt::print("{:<{}}{:<{}}  {:<12} {:<13} {:>5} {:>7} {:>6} {:>7} {:>9} {:>11} {:>10} {:>10}\n",
+               r.case_name, case_width, r.name, width, r.coupled_solver, short_outcome(r),
+               r.steps_completed, format_number(r.average_iterations, "{:.2f}"),
+               r.maximum_iterations, r.solver_calls, format_number(r.wall_time, "{:.3f}"),
+               format_number(r.coupler_time, "{:.4f}"), format_number(r.displacement_error),
+               format_number(r.pressure_error));
   for (const auto& r : rows) {
     if (!r.completed && !r.message.empty())
-      fmt::print("  {}: {}: {}\n", r.name, r.status, r.message);
-    if (!r.note.empty()) fmt::print("  {}: {}\n", r.name, r.note);
+      fmt::print("  {}: {} ({}): {}\n", label(r), r.status, r.reason, r.message);
+    if (!r.note.empty()) fmt::print("  {}: {}\n", label(r), r.note);
   }
 }
 
@@ -445,7 +552,8 @@ nlohmann::json number_or_null(double value) {
 }
 
 nlohmann::json to_json(const RunResult& r) {
-  return {{"name", r.name},
+  return {{"case", r.case_name},
+          {"name", r.name},
           {"coupled_solver", r.coupled_solver},
           {"status", r.status},
           {"completed", r.completed},
@@ -458,7 +566,10 @@ nlohmann::json to_json(const RunResult& r) {
           {"coupler_time", number_or_null(r.coupler_time)},
           {"displacement_error", number_or_null(r.displacement_error)},
           {"pressure_error", number_or_null(r.pressure_error)},
-          {"note", r.note}};
+          {"note", r.note},
+          {"outcome", r.outcome},
+          {"reason", r.reason},
+          {"unconverged_steps", r.unconverged_steps}};
 }
 
 const std::vector<std::string> kColumns = {"name",
@@ -474,7 +585,11 @@ const std::vector<std::string> kColumns = {"name",
                                            "coupler_time",
                                            "displacement_error",
                                            "pressure_error",
-                                           "note"};
+                                           "note",
+                                           "case",
+                                           "outcome",
+                                           "reason",
+                                           "unconverged_steps"};
 
 std::string csv_field(const nlohmann::json& value) {
   if (value.is_null()) return "";
@@ -486,7 +601,7 @@ std::string csv_field(const nlohmann::json& value) {
   return quoted + "\"";
 }
 
-void write_outputs(const BenchFile& bench, const fs::path& reference,
+void write_outputs(const BenchFile& bench, const nlohmann::json& reference,
                    const std::vector<RunResult>& rows) {
   nlohmann::json runs = nlohmann::json::array();
   std::ofstream csv(bench.output_directory / "bench.csv");
@@ -501,7 +616,7 @@ void write_outputs(const BenchFile& bench, const fs::path& reference,
   }
   const nlohmann::json document = {{"bench_file", bench.file.string()},
                                    {"base_case", bench.base_case.string()},
-                                   {"reference", reference.string()},
+                                   {"reference", reference},
                                    {"runs", runs}};
   std::ofstream(bench.output_directory / "bench.json") << document.dump(2) << "\n";
 }
@@ -527,27 +642,22 @@ void plot(const BenchFile& bench) {
 // ---------------------------------------------------------------------------------------------
 // The bench
 
-struct PlannedRun {
-  std::string name;
-  fs::path case_file;
-};
-
 /// Write every case first and validate it, so that a mistake in the last variant is found
 /// before the first run, not an hour later.
 std::vector<PlannedRun> prepare(const BenchFile& bench) {
   const YAML::Node base = YAML::LoadFile(bench.base_case.string());
   check_working_directories(base, bench.base_case);
   std::vector<PlannedRun> runs;
-  if (bench.reference_results.empty())
-    runs.push_back({kReferenceName, prepare_run(bench, base, kReferenceName,
-                                                reference_coupled_solver(base["coupled_solver"],
-                                                                         bench.reference_tolerance),
-                                                YAML::Node())});
-  for (const Variant& v : bench.variants)
-    runs.push_back(
-        {v.name,
-         prepare_run(bench, base, v.name,
-                     merge_coupled_solver(base["coupled_solver"], v.coupled_solver), v.settings)});
+  for (const BenchCase& c : bench.cases) {
+    if (bench.reference == ReferenceKind::kComputed)
+      runs.push_back(prepare_run(
+          bench, base, c, kReferenceName,
+          reference_coupled_solver(base["coupled_solver"], bench.reference_tolerance), Changes{}));
+    for (const Variant& v : bench.variants)
+      runs.push_back(prepare_run(bench, base, c, v.name,
+                                 merge_coupled_solver(base["coupled_solver"], v.coupled_solver),
+                                 v.changes));
+  }
   for (const PlannedRun& run : runs) {
     const Case c = load_case(run.case_file);
     for (const auto& solver : c.solvers) solver->check();
@@ -558,20 +668,65 @@ std::vector<PlannedRun> prepare(const BenchFile& bench) {
 /// Run every case in turn; returns false if the bench has to stop (interrupt, no reference).
 bool run_all(const std::vector<PlannedRun>& runs, std::vector<RunResult>& rows) {
   for (std::size_t i = 0; i < runs.size(); ++i) {
-    fmt::print("\n=== bench run {} of {}: {} ===\n", i + 1, runs.size(), runs[i].name);
-    std::fflush(stdout);
     RunResult row;
+    row.case_name = runs[i].case_name;
     row.name = runs[i].name;
+    fmt::print("\n=== bench run {} of {}: {} ===\n", i + 1, runs.size(), label(row));
+    std::fflush(stdout);
     run_case(runs[i].case_file, RunOptions{true});
     read_summary(row, runs[i].case_file.parent_path() / "results" / "case.summary.json");
+    // A solver names its input file relative to its directory: say which copy it read.
+    if (row.status == "solver_failed" && !runs[i].changed_inputs.empty())
+      add_note(row, "input changed by the bench: " + runs[i].changed_inputs);
     rows.push_back(row);
     if (row.status == "interrupted") return false;
     if (row.name == kReferenceName && row.steps_completed == 0) {
-      fmt::print(stderr, "error: the reference run computed no time step: {}\n", row.message);
+      fmt::print(stderr, "error: the reference run {} computed no time step: {}\n", label(row),
+                 row.message);
       return false;
     }
   }
   return true;
+}
+
+/// The results file each case's runs are compared with (none for `reference: none`).
+fs::path reference_of(const BenchFile& bench, const std::string& case_name) {
+  switch (bench.reference) {
+    case ReferenceKind::kGiven:
+      return bench.reference_results;
+    case ReferenceKind::kComputed:
+      return bench.output_directory / case_name / kReferenceName / "results" / "case.h5";
+    case ReferenceKind::kNone:
+      break;
+  }
+  return {};
+}
+
+void compare_with_references(const BenchFile& bench, const std::vector<PlannedRun>& runs,
+                             std::vector<RunResult>& rows) {
+  if (bench.reference == ReferenceKind::kNone) return;
+  for (const BenchCase& c : bench.cases) {
+    const fs::path reference = reference_of(bench, c.name);
+    try {
+      const Results reference_results = read_results(reference);
+      for (std::size_t i = 0; i < rows.size(); ++i)
+        if (rows[i].case_name == c.name)
+          compute_errors(rows[i], runs[i].case_file.parent_path() / "results" / "case.h5",
+                         reference_results);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "warning: cannot read the reference {}: {}\n", reference.string(),
+                 e.what());
+    }
+  }
+}
+
+/// bench.json's `reference`: the results file, "none", or one file per case of a sweep.
+nlohmann::json describe_references(const BenchFile& bench) {
+  if (bench.reference == ReferenceKind::kNone) return "none";
+  if (bench.cases.size() == 1) return reference_of(bench, bench.cases.front().name).string();
+  nlohmann::json by_case = nlohmann::json::object();
+  for (const BenchCase& c : bench.cases) by_case[c.name] = reference_of(bench, c.name).string();
+  return by_case;
 }
 
 }  // namespace
@@ -589,22 +744,17 @@ int run_bench(const fs::path& bench_file, const BenchOptions& options) {
   }
   std::vector<RunResult> rows;
   const bool finished = run_all(runs, rows);
-  const fs::path reference = bench.reference_results.empty()
-                                 ? bench.output_directory / kReferenceName / "results" / "case.h5"
-                                 : bench.reference_results;
-  try {
-    const Results reference_results = read_results(reference);
-    for (std::size_t i = 0; i < rows.size(); ++i)
-      compute_errors(rows[i], runs[i].case_file.parent_path() / "results" / "case.h5",
-                     reference_results);
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "warning: cannot read the reference {}: {}\n", reference.string(), e.what());
-  }
+  compare_with_references(bench, runs, rows);
   print_table(rows);
+  const nlohmann::json reference = describe_references(bench);
   write_outputs(bench, reference, rows);
-  fmt::print("\nreference: {}\ntable    : {}\n", reference.string(),
+  fmt::print("\nreference: {}\ntable    : {}\n",
+             reference.is_string() ? reference.get<std::string>() : "one per case (bench.json)",
              (bench.output_directory / "bench.csv").string());
-  if (options.plot && finished) plot(bench);
+  if (bench.reference == ReferenceKind::kNone)
+    fmt::print("no plot of error against time: reference: none\n");
+  else if (options.plot && finished)
+    plot(bench);
   return finished ? 0 : 1;
 }
 

@@ -37,6 +37,7 @@ class MappedSolverWrapper : public SolverWrapper {
   std::string describe() const override { return name_ + " mapped onto " + inner_->describe(); }
   std::string started() const override { return inner_->started(); }
   void check() const override { inner_->check(); }
+  std::filesystem::path input_file() const override { return inner_->input_file(); }
 
   void initialize() override { inner_->initialize(); }
   bool adopts_interfaces() const override { return true; }

@@ -175,6 +175,10 @@ void ProcessSolverWrapper::check() const {
                     (working_directory_ / input_file_).string() + " does not exist");
 }
 
+std::filesystem::path ProcessSolverWrapper::input_file() const {
+  return input_file_.empty() ? std::filesystem::path() : working_directory_ / input_file_;
+}
+
 int ProcessSolverWrapper::child_pid() const {
   return child_ ? child_->pid() : -1;
 }

@@ -44,6 +44,7 @@ class ProcessSolverWrapper : public SolverWrapper {
   std::string started() const override;
   std::string describe() const override;
   void check() const override;
+  std::filesystem::path input_file() const override;
 
   void initialize() override;
   const Interface& input_interface() const override { return input_interface_; }

@@ -1,5 +1,6 @@
 // `cocopp bench` end to end: a small benchmark of the tube with a computed reference, a
-// diverging variant and a variant identical to the reference; then a given reference file.
+// diverging variant and a variant identical to the reference; then a given reference file; a
+// sweep of cases x variants with solver_inputs and no reference; errors in the bench file.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -135,6 +136,159 @@ variants:
   EXPECT_EQ(result.exit_code, 2) << result.output;
   EXPECT_NE(result.output.find("coupled_solver.model.q"), std::string::npos) << result.output;
   EXPECT_FALSE(fs::exists(dir / "bench_results" / "reference" / "results"));
+  fs::remove_all(dir);
+}
+
+/// A tiny stability sweep: two cases x three variants, no reference. Gauss-Seidel must diverge
+/// on the light wall (the linear analysis gives 12 unstable modes at rho_s = 500) and converge at
+/// dt = 1e-2 (|lambda_1| = 0.08: no unstable mode); IQN-ILS converges on both; an iteration
+/// limit of 2 leaves every step unconverged.
+const std::string kSweep = R"(base_case: flow_structure/case.yaml
+reference: none
+settings: {number_of_timesteps: 3}
+cases:
+  - name: light
+    solver_inputs: {structure: {rho_s: 500.0}}
+  - name: dt_1e-2
+    settings: {delta_t: 1.0e-2}
+    solver_inputs: {flow: {inlet: {period: 0.05}}}
+variants:
+  - name: gauss_seidel
+    coupled_solver: {type: gauss_seidel}
+  - name: iqni_ls_q10
+  - name: limit_2
+    coupled_solver: {convergence_criterion: {type: iteration_limit, maximum: 2}}
+)";
+
+const nlohmann::json& run_of(const nlohmann::json& bench, const std::string& case_name,
+                             const std::string& name) {
+  for (const auto& run : bench["runs"])
+    if (run["case"] == case_name && run["name"] == name) return run;
+  throw std::runtime_error("no run " + case_name + "/" + name);
+}
+
+TEST(CocoppBench, SweepsCasesWithSolverInputsWithoutReference) {
+  const fs::path dir = bench_directory("bench_sweep", kSweep);
+  const auto result = run_cocopp("bench " + (dir / "bench.yaml").string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const fs::path out = dir / "bench_results";
+
+  // The new values are in the copied input files, the base case's files are untouched.
+  const std::string light =
+      read_text(out / "light" / "iqni_ls_q10" / "structure" / "tube_structure.yaml");
+  EXPECT_NE(light.find("rho_s: 500"), std::string::npos) << light;
+  EXPECT_NE(light.find("e: 3.0e5"), std::string::npos) << light;       // the other keys are kept
+  EXPECT_NE(light.find("bench.yaml:6:"), std::string::npos) << light;  // where the value came from
+  EXPECT_NE(
+      read_text(dir / "flow_structure" / "structure" / "tube_structure.yaml").find("rho_s: 1200.0"),
+      std::string::npos);
+  const std::string flow = read_text(out / "dt_1e-2" / "gauss_seidel" / "flow" / "tube_flow.yaml");
+  EXPECT_NE(flow.find("period: 0.05"), std::string::npos) << flow;
+  EXPECT_NE(flow.find("amplitude: 1333.2"), std::string::npos) << flow;  // merged, not replaced
+
+  const nlohmann::json bench = read_json(out / "bench.json");
+  EXPECT_EQ(bench["reference"], "none");
+  ASSERT_EQ(bench["runs"].size(), 6u);  // no reference runs
+  const auto& gs_light = run_of(bench, "light", "gauss_seidel");
+  EXPECT_EQ(gs_light["outcome"], "diverged");
+  EXPECT_EQ(gs_light["reason"], "residual growth in step 1");
+  const auto& gs_dt = run_of(bench, "dt_1e-2", "gauss_seidel");
+  EXPECT_EQ(gs_dt["outcome"], "converged") << gs_dt.dump();
+  EXPECT_EQ(gs_dt["steps_completed"], 3);
+  for (const char* c : {"light", "dt_1e-2"}) {
+    const auto& iqni = run_of(bench, c, "iqni_ls_q10");
+    EXPECT_EQ(iqni["outcome"], "converged") << c;
+    EXPECT_EQ(iqni["unconverged_steps"], 0) << c;
+    EXPECT_TRUE(iqni["displacement_error"].is_null()) << c;
+    const auto& limited = run_of(bench, c, "limit_2");
+    EXPECT_EQ(limited["outcome"], "stalled") << c;
+    EXPECT_EQ(limited["unconverged_steps"], 3) << c;
+    EXPECT_EQ(limited["reason"], "3 of 3 steps at the iteration limit") << c;
+    EXPECT_EQ(limited["maximum_iterations"], 2) << c;
+  }
+  // A heavier wall answers the same pressure pulse with another motion: the solver input acts.
+  const double light_iterations = run_of(bench, "light", "iqni_ls_q10")["average_iterations"];
+  EXPECT_GT(light_iterations, 0.0);
+
+  // The table: one line per run, with the case first.
+  const auto line = result.output.find("\nlight ");
+  ASSERT_NE(line, std::string::npos) << result.output;
+  const std::string first =
+      result.output.substr(line + 1, result.output.find('\n', line + 1) - line);
+  EXPECT_NE(first.find(" gauss_seidel "), std::string::npos) << first;
+  EXPECT_NE(first.find(" diverged "), std::string::npos) << first;
+  EXPECT_NE(result.output.find("stalled 3"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("no plot"), std::string::npos) << result.output;
+  EXPECT_FALSE(fs::exists(out / "bench.png"));
+  const std::string csv = read_text(out / "bench.csv");
+  EXPECT_NE(csv.find(",light,diverged,residual growth in step 1,0"), std::string::npos) << csv;
+
+  // The linear analysis next to the sweep (scripts/tube_modes.py). By hand: at rho_s = 500,
+  // omega_r^2 dt^2 = 3e5 / (500 * 0.005^2) * 1e-8 = 0.24 and |lambda_j| = 2 * 1000 /
+  // (500 * 1e-3 * 0.005 * (j pi / 0.05)^2) / 1.24 = 163.4 / j^2: modes 1..12 are unstable; at
+  // dt = 1e-2 (rho_s = 1200), |lambda_1| = 84.4 / (1 + 1e7 * 1e-4) = 0.0843: none. Gauss-Seidel
+  // diverged in the first case and converged in the second.
+  const auto modes = run_command(
+      "/usr/bin/python3 " COCOPP_TEST_SOURCE_DIR "/scripts/tube_modes.py " + out.string());
+  ASSERT_EQ(modes.exit_code, 0) << modes.output;
+  EXPECT_NE(
+      modes.output.find("| light | 0.5 | 300000 | 0.0001 | 0.05 | 163 | 12 | **div.** step 1 |"),
+      std::string::npos)
+      << modes.output;
+  EXPECT_NE(modes.output.find("| dt_1e-2 | 1.2 | 300000 | 0.01 | 0.05 | 0.0843 | 0 | "),
+            std::string::npos)
+      << modes.output;
+  fs::remove_all(dir);
+}
+
+TEST(CocoppBench, SolverInputErrorsNameTheBenchFileAndTheKey) {
+  const std::string head =
+      "base_case: flow_structure/case.yaml\nreference: none\n"
+      "settings: {number_of_timesteps: 1}\n";
+  const fs::path dir = bench_directory("bench_inputs", head + R"(variants:
+  - name: typo
+    solver_inputs: {strucure: {rho_s: 500.0}}
+)");
+  auto result = run_cocopp("bench " + (dir / "bench.yaml").string());
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_NE(result.output.find("bench.yaml:6:"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("no solver named 'strucure'; did you mean 'structure'?"),
+            std::string::npos)
+      << result.output;
+
+  write_text(dir / "bench.yaml", head + "variants:\n  - {name: a, solver_inputs: {flow: 3}}\n");
+  result = run_cocopp("bench " + (dir / "bench.yaml").string());
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_NE(result.output.find("solver_inputs.flow"), std::string::npos) << result.output;
+
+  write_text(dir / "bench.yaml",
+             "base_case: flow_structure/case.yaml\nreference: nothing\nvariants: [{name: a}]\n");
+  result = run_cocopp("bench " + (dir / "bench.yaml").string());
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_NE(result.output.find("must be 'none'"), std::string::npos) << result.output;
+
+  // An unknown key of the solver's own input: the solver rejects it when it reads the file,
+  // naming the run's copy of the file, the line and the nearest key; the bench goes on.
+  write_text(dir / "bench.yaml", head + R"(variants:
+  - name: bad_key
+    solver_inputs: {structure: {rho_z: 500.0}}
+  - name: fine
+)");
+  result = run_cocopp("bench " + (dir / "bench.yaml").string());
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  const nlohmann::json bench = read_json(dir / "bench_results" / "bench.json");
+  const auto& bad = run_named(bench, "bad_key");
+  EXPECT_EQ(bad["outcome"], "solver_failed");
+  const std::string message = bad["message"];
+  EXPECT_NE(message.find("tube_structure.yaml:"), std::string::npos) << message;
+  EXPECT_NE(message.find("unknown key 'rho_z'; did you mean 'rho_s'"), std::string::npos)
+      << message;
+  // ... and the bench says which copy of the file that is and where the change came from.
+  const std::string note = bad["note"];
+  EXPECT_NE(note.find("bad_key/structure/tube_structure.yaml"), std::string::npos) << note;
+  EXPECT_NE(note.find("bench.yaml:6:"), std::string::npos) << note;
+  EXPECT_NE(result.output.find(note), std::string::npos) << result.output;
+  EXPECT_EQ(run_named(bench, "fine")["outcome"], "converged");
   fs::remove_all(dir);
 }
 
