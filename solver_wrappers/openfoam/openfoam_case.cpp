@@ -209,6 +209,21 @@ void CaseCheck::run() const {
         "{}: {}the fluid density rho is missing: the loads sent to the coupler are in Pa, the "
         "kinematic pressure and stress times rho (add e.g. 'rho 1000;')",
         transport.file().string(), solver));
+  if (cores > 1) check_decomposition();
+}
+
+void CaseCheck::check_decomposition() const {
+  const auto decompose = FoamDictionary::read(case_directory / "system" / "decomposeParDict");
+  const double parts = decompose.number("numberOfSubdomains");
+  if (parts != cores)
+    throw CaseError(fmt::format(
+        "{}: {}numberOfSubdomains {} differs from the solver's cores {}: they must be equal",
+        decompose.where("numberOfSubdomains"), solver, parts, cores));
+  // Debian's scotch decomposition library is a stub: only the geometric methods work.
+  const auto method = decompose.value("method");
+  if (method != "simple" && method != "hierarchical")
+    throw CaseError(fmt::format("{}: {}method {}: use simple or hierarchical (with their coeffs)",
+                                decompose.where("method"), solver, method ? *method : "missing"));
 }
 
 }  // namespace cocopp::openfoam

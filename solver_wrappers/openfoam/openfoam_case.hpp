@@ -48,7 +48,11 @@ struct CaseCheck {
   std::vector<std::string> interface_patches;
   double delta_t = 0.0;  ///< the coupler's time step
   std::string solver;    ///< "solver 'flow': ", prefixed to messages
+  int cores = 1;         ///< > 1: system/decomposeParDict must split the mesh into as many parts
   void run() const;
+
+ private:
+  void check_decomposition() const;
 };
 
 }  // namespace cocopp::openfoam

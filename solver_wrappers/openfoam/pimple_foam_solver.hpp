@@ -11,11 +11,13 @@
 // first one is exactly pimpleFoam's time step. Committing a step (finalize_step) writes the
 // fields when controlDict says so.
 //
-// Interface, per patch P of `-patches`: model part `P_points` (the patch points in OpenFOAM's
-// meshPoints order, ids = mesh point labels; input `displacement`) and `P_faces` (the face
-// centres, ids = mesh face labels; output `pressure` and `traction`). Loads are in Pa: the
-// kinematic pressure and stress times `rho` from constant/transportProperties. `traction` is
-// the viscous force per area of the fluid on the wall, rho * (n & devReff) with n the outward
+// Interface, per patch P of `-patches`: model part `P_points` (the patch points, ids = mesh
+// point labels; input `displacement`) and `P_faces` (the face centres, ids = mesh face labels;
+// output `pressure` and `traction`), both sorted by label of the undecomposed mesh, so that a
+// parallel run has the interface of the serial one. In parallel every rank runs this class;
+// the master gathers the loads (see ParallelSolver in main_cocopp_pimple_foam.cpp). Loads are in
+// Pa: the kinematic pressure and stress times `rho` from constant/transportProperties. `traction`
+// is the viscous force per area of the fluid on the wall, rho * (n & devReff) with n the outward
 // normal of the fluid domain (= -rho * OpenFOAM's wallShearStress).
 #include <cstdint>
 #include <memory>
@@ -28,6 +30,7 @@
 #include "fvOptions.H"
 #include "pimpleControl.H"
 #include "singlePhaseTransportModel.H"
+#include "solver_wrappers/openfoam/patch_numbering.hpp"
 #include "solver_wrappers/sdk/solver_sdk.hpp"
 #include "turbulentTransportModel.H"
 
@@ -48,7 +51,8 @@ class PimpleFoamSolver : public sdk::Solver {
 
  private:
   /// What pimpleFoam creates before its time loop (createTime, the mesh, createFields, ...).
-  void create_case();
+  void create_case(const sdk::RunInfo& run);
+  void start_at_coupler_step(const sdk::RunInfo& run);
   void find_patches();
   void check_run(const sdk::RunInfo& run) const;
   const Foam::pointField& initial_points() const;
@@ -66,6 +70,7 @@ class PimpleFoamSolver : public sdk::Solver {
   Foam::argList& args_;
   Foam::wordList patch_names_;
   Foam::labelList patch_ids_;
+  std::vector<PatchNumbering> numbering_;  ///< per patch: the coupler's order
   double rho_ = 0.0;
 
   Foam::autoPtr<Foam::Time> run_time_;

@@ -179,6 +179,23 @@ TEST_F(CaseCheckTest, TheDensityMustBeGiven) {
       file("constant/transportProperties") + ": solver 'fluid': the fluid density rho is missing");
 }
 
+TEST_F(CaseCheckTest, AParallelRunNeedsAGeometricDecompositionIntoAsManyParts) {
+  CaseCheck parallel = check();
+  parallel.cores = 2;
+  EXPECT_CONTAINS(case_error_of([&] { parallel.run(); }),
+                  file("system/decomposeParDict") + ": cannot read the file");
+  write("system/decomposeParDict", "numberOfSubdomains 4;\nmethod simple;\n");
+  EXPECT_CONTAINS(
+      case_error_of([&] { parallel.run(); }),
+      file("system/decomposeParDict") +
+          ":11: solver 'fluid': numberOfSubdomains 4 differs from the solver's cores 2");
+  write("system/decomposeParDict", "numberOfSubdomains 2;\nmethod scotch;\n");
+  EXPECT_CONTAINS(case_error_of([&] { parallel.run(); }),
+                  file("system/decomposeParDict") + ":12: solver 'fluid': method scotch");
+  write("system/decomposeParDict", "numberOfSubdomains 2;\nmethod hierarchical;\n");
+  EXPECT_NO_THROW(parallel.run());
+}
+
 TEST(OpenFoamWrapper, ReadsItsKeysAndStartsCocoppPimpleFoamOnThePatches) {
   RunSettings run;
   run.delta_t = 0.001;
@@ -194,6 +211,28 @@ TEST(OpenFoamWrapper, ReadsItsKeysAndStartsCocoppPimpleFoamOnThePatches) {
   EXPECT_EQ(process.command()[1], "-patches");
   EXPECT_EQ(process.command()[2], "(wall top)");
   EXPECT_EQ(process.working_directory(), "/case/tube");
+
+  const Settings parallel = Settings::load_string(
+      "type: openfoam\nworking_directory: tube\nboundary_names: [wall]\ncores: 2\n", "case.yaml");
+  const auto parallel_wrapper = SolverWrapperRegistry::instance().create(parallel, run);
+  const auto& mpi = dynamic_cast<const ProcessSolverWrapper&>(*parallel_wrapper);
+  const std::vector<std::string> expected = {"mpirun",
+                                             "--allow-run-as-root",
+                                             "--oversubscribe",
+                                             "-np",
+                                             "2",
+                                             "-x",
+                                             "WM_PROJECT_DIR",
+                                             "-x",
+                                             "COCOPP_TRANSPORT",
+                                             "-x",
+                                             "COCOPP_CHANNEL"};
+  ASSERT_GE(mpi.command().size(), expected.size() + 4);
+  EXPECT_EQ(
+      std::vector<std::string>(mpi.command().begin(), mpi.command().begin() + expected.size()),
+      expected);
+  EXPECT_EQ(std::filesystem::path(mpi.command()[expected.size()]).filename(), "cocoppPimpleFoam");
+  EXPECT_EQ(mpi.command()[expected.size() + 1], "-parallel");
 
   const Settings missing = Settings::load_string(
       "type: openfoam\nworking_directory: tube\nboundary_names: [wall, wall]\n", "case.yaml");
