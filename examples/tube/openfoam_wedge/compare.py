@@ -38,17 +38,20 @@ def main():
     parser.add_argument("wedge", help="results of the OpenFOAM wedge run (HDF5)")
     parser.add_argument("reference", help="results of the 1D flow-structure run (HDF5)")
     parser.add_argument("--plot", help="write the comparison plot to this file")
+    parser.add_argument("--names", nargs=2, default=["wedge", "1D"], help="short names of the two runs")
     args = parser.parse_args()
+    a, b = args.names
 
     runs = {"OpenFOAM wedge + 1D structure": mid_tube_pressure(args.wedge),
             "1D flow + 1D structure": mid_tube_pressure(args.reference)}
     (t_w, p_w), (t_r, p_r) = runs.values()
     arrival_w, arrival_r = arrival(t_w, p_w), arrival(t_r, p_r)
     arrival_error = abs(arrival_w - arrival_r) / arrival_r
-    print(f"arrival at mid-tube (half peak): wedge {arrival_w * 1e3:.3f} ms, 1D {arrival_r * 1e3:.3f} ms, "
+    print(f"arrival at mid-tube (half peak): {a} {arrival_w * 1e3:.3f} ms, {b} {arrival_r * 1e3:.3f} ms, "
           f"difference {100 * arrival_error:.1f} %")
-    print(f"peak pressure at mid-tube: wedge {p_w.max():.1f} Pa at {t_w[p_w.argmax()] * 1e3:.2f} ms, "
-          f"1D {p_r.max():.1f} Pa at {t_r[p_r.argmax()] * 1e3:.2f} ms, ratio {p_w.max() / p_r.max():.3f}")
+    print(f"peak pressure at mid-tube: {a} {p_w.max():.1f} Pa at {t_w[p_w.argmax()] * 1e3:.2f} ms, "
+          f"{b} {p_r.max():.1f} Pa at {t_r[p_r.argmax()] * 1e3:.2f} ms, ratio {p_w.max() / p_r.max():.3f}")
+    print(f"largest difference of the mid-tube pressure: {np.abs(np.interp(t_r, t_w, p_w) - p_r).max():.3g} Pa")
 
     if args.plot:
         import matplotlib
