@@ -337,6 +337,24 @@ TEST_F(OpenFoamSolverTest, SerialAndTwoRanksGiveTheSameCoupledResults) {
   EXPECT_GT(scale, 1000.0);  // Pa: the moving wall pushes the fluid
 }
 
+TEST_F(OpenFoamSolverTest, AFailedDecompositionIsReportedWithItsLog) {
+  make_case(directory_ / "fluid");
+  // hierarchical without its coefficients: decomposePar stops.
+  testing::write_text(directory_ / "fluid/system/decomposeParDict",
+                      "FoamFile { version 2.0; format ascii; class dictionary; object "
+                      "decomposeParDict; }\nnumberOfSubdomains 2;\nmethod hierarchical;\n");
+  try {
+    start("fluid", "cores: 2\n");
+    FAIL() << "no SolverError";
+  } catch (const SolverError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("decomposePar exited with code"), std::string::npos) << message;
+    EXPECT_NE(message.find((directory_ / "fluid/log.decomposePar").string()), std::string::npos)
+        << message;
+    EXPECT_NE(message.find("FOAM FATAL"), std::string::npos) << message;  // decomposePar's words
+  }
+}
+
 TEST_F(OpenFoamSolverTest, ABrokenCaseIsReportedWithTheOpenFoamLog) {
   make_case(directory_ / "fluid");
   std::filesystem::remove(directory_ / "fluid/0/U");
