@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Install the Debian 12 packages cocopp needs to build, test and plot. Idempotent: does nothing
-# when everything is there already. Run as root (or with sudo).
+# when everything is there already. Run as root (or with sudo). Also installs OpenFOAM
+# (scripts/install-openfoam.sh).
 set -euo pipefail
 
 packages=(
@@ -18,12 +19,17 @@ for p in "${packages[@]}"; do
 done
 if [ ${#missing[@]} -eq 0 ]; then
   echo "install-dependencies: all ${#packages[@]} packages present"
-  exit 0
+else
+  sudo_cmd=()
+  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  echo "install-dependencies: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get -o DPkg::Lock::Timeout=600 update -q
+  "${sudo_cmd[@]}" apt-get -o DPkg::Lock::Timeout=600 install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-sudo_cmd=()
-[ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
-echo "install-dependencies: installing ${missing[*]}"
-export DEBIAN_FRONTEND=noninteractive
-"${sudo_cmd[@]}" apt-get update -q
-"${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+# OpenFOAM and the headers cocoppPimpleFoam compiles against (skip with COCOPP_WITHOUT_OPENFOAM=1:
+# CMake then says that the OpenFOAM parts are disabled).
+if [ "${COCOPP_WITHOUT_OPENFOAM:-0}" != 1 ]; then
+  "$(dirname "$0")/install-openfoam.sh"
+fi

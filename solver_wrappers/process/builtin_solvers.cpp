@@ -25,7 +25,8 @@ bool register_builtin_solver(const std::string& type, const std::string& executa
       type,
       [=](const Settings& settings, const RunSettings& run) -> std::unique_ptr<SolverWrapper> {
         return std::make_unique<ProcessSolverWrapper>(
-            settings, run, DefaultCommand{builtin_solver_directory() / executable, input_file});
+            settings, run,
+            DefaultCommand{builtin_solver_directory() / executable, input_file, {}, {}});
       });
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 
 #include "coupler/case/suggest.hpp"
 #include "solver_wrappers/process/child_process.hpp"
@@ -117,6 +118,7 @@ ProcessSolverWrapper::ProcessSolverWrapper(const Settings& settings, const RunSe
   working_directory_ = std::filesystem::absolute(run.case_directory / directory).lexically_normal();
   working_directory_where_ = settings.where("working_directory");
   read_command(settings, default_command);
+  if (default_command) default_environment_ = default_command->environment;
   transport_kind_ =
       protocol::parse_transport_kind(settings.get_choice("transport", "pipe", {"pipe", "file"}));
   timeout_ = settings.get_in_range("timeout", 600.0, Range::positive());  // seconds
@@ -126,6 +128,13 @@ ProcessSolverWrapper::ProcessSolverWrapper(const Settings& settings, const RunSe
 
 void ProcessSolverWrapper::read_command(const Settings& settings,
                                         const std::optional<DefaultCommand>& default_command) {
+  if (default_command && default_command->input_file.empty() && !settings.has("command")) {
+    command_ = {default_command->executable.string()};
+    command_.insert(command_.end(), default_command->arguments.begin(),
+                    default_command->arguments.end());
+    command_where_ = settings.where();
+    return;
+  }
   if (default_command && !settings.has("command")) {
     input_file_ = settings.get<std::string>("input_file", default_command->input_file);
     input_file_where_ = settings.where("input_file");
@@ -133,7 +142,7 @@ void ProcessSolverWrapper::read_command(const Settings& settings,
     command_where_ = settings.where();
     return;
   }
-  if (default_command && settings.has("input_file"))
+  if (default_command && !default_command->input_file.empty() && settings.has("input_file"))
     settings.fail("input_file", "give either 'command' or 'input_file', not both");
   command_ = settings.required<std::vector<std::string>>("command");
   if (command_.empty() || command_[0].empty())
@@ -204,6 +213,9 @@ void ProcessSolverWrapper::launch() {
     options.environment = {
         {protocol::kTransportVariable, protocol::transport_name(transport_kind_)},
         {protocol::kChannelVariable, working_directory_.string()}};
+    for (const auto& [variable, value] : default_environment_)
+      if (std::getenv(variable.c_str()) == nullptr)
+        options.environment.emplace_back(variable, value);
     options.log_file = log_file_;
     options.truncate_log = true;
     child_ = std::make_unique<ChildProcess>(options);

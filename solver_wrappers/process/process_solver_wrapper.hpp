@@ -29,7 +29,13 @@ class ChildProcess;
 /// The command of a built-in solver: used when the case file gives no `command`.
 struct DefaultCommand {
   std::filesystem::path executable;
-  std::string input_file;  ///< default of the `input_file` key, relative to working_directory
+  /// Default of the `input_file` key, relative to working_directory, passed as the only
+  /// argument; empty: the solver has no input file and gets `arguments` instead.
+  std::string input_file;
+  std::vector<std::string> arguments;
+  /// Variables the solver needs, added to its environment unless the coupler's sets them
+  /// (whether or not the case file gives its own `command`).
+  std::vector<std::pair<std::string, std::string>> environment;
 };
 
 class ProcessSolverWrapper : public SolverWrapper {
@@ -105,6 +111,7 @@ class ProcessSolverWrapper : public SolverWrapper {
   double timeout_ = 600.0;
   double startup_timeout_ = 60.0;
   std::filesystem::path log_file_;
+  std::vector<std::pair<std::string, std::string>> default_environment_;
   // Where in the case file, for check() errors.
   std::string working_directory_where_;
   std::string command_where_;

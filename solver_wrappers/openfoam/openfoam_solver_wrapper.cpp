@@ -1,0 +1,128 @@
+// The `openfoam` solver wrapper: an OpenFOAM case run by cocoppPimpleFoam (pimpleFoam with a
+// moving mesh, stays running for the whole simulation), driven over the solver protocol.
+//
+// Keys (docs/solver-wrappers-openfoam.md): those of `process` (working_directory is the
+// OpenFOAM case directory; the default command is [<bin>/cocoppPimpleFoam, -patches, (...)])
+// plus `boundary_names`, the interface patches, and `cores`: more than 1 decomposes the case
+// (decomposePar) and runs the application under mpirun. check() checks the case before
+// anything runs: fixed deltaT equal to the coupler's, a dynamic mesh with a motion solver, the
+// patches in the mesh, the density for the loads in Pa, the decomposition.
+#include <fmt/format.h>
+
+#include <set>
+
+#include "coupler/case/suggest.hpp"
+#include "solver_wrappers/openfoam/openfoam_case.hpp"
+#include "solver_wrappers/process/child_process.hpp"
+#include "solver_wrappers/process/process_solver_wrapper.hpp"
+#include "solver_wrappers/protocol/transport.hpp"
+#include "solver_wrappers/solver_error.hpp"
+
+namespace cocopp {
+
+namespace {
+
+std::vector<std::string> read_boundary_names(const Settings& settings) {
+  const auto names = settings.required<std::vector<std::string>>("boundary_names");
+  if (names.empty())
+    settings.fail("boundary_names", "give the interface patches of the OpenFOAM mesh, e.g. [wall]");
+  std::set<std::string> seen;
+  for (const auto& name : names)
+    if (!seen.insert(name).second)
+      settings.fail("boundary_names", "patch '" + name + "' is listed twice");
+  return names;
+}
+
+DefaultCommand pimple_foam_command(const std::vector<std::string>& boundary_names, int cores) {
+  const std::string application = (builtin_solver_directory() / "cocoppPimpleFoam").string();
+  // OpenFOAM's list syntax for the word list option: -patches '(wall top)'.
+  const std::vector<std::string> patches = {"-patches", "(" + join(boundary_names, " ") + ")"};
+  // All of OpenFOAM's environment that Debian's build needs (its etc/ files); its libraries
+  // read it while they load.
+  const std::vector<std::pair<std::string, std::string>> environment = {
+      {"WM_PROJECT_DIR", "/usr/share/openfoam"}};
+  if (cores == 1) return {application, "", patches, environment};
+  std::vector<std::string> arguments = {"--allow-run-as-root",
+                                        "--oversubscribe",
+                                        "-np",
+                                        std::to_string(cores),
+                                        "-x",
+                                        "WM_PROJECT_DIR",
+                                        "-x",
+                                        protocol::kTransportVariable,
+                                        "-x",
+                                        protocol::kChannelVariable,
+                                        application,
+                                        "-parallel"};
+  arguments.insert(arguments.end(), patches.begin(), patches.end());
+  return {"mpirun", "", arguments, environment};
+}
+
+class OpenFoamSolverWrapper : public ProcessSolverWrapper {
+ public:
+  OpenFoamSolverWrapper(const Settings& settings, const RunSettings& run)
+      : OpenFoamSolverWrapper(settings, run, read_boundary_names(settings),
+                              settings.get_int_in_range("cores", 1, 1)) {}
+
+  void check() const override {
+    ProcessSolverWrapper::check();
+    openfoam::CaseCheck{working_directory(), boundary_names_, delta_t_,
+                        "solver '" + name() + "': ", cores_}
+        .run();
+  }
+
+  void initialize() override {
+    // A fresh parallel run decomposes the case; a restart uses the processor directories of
+    // the run it continues.
+    if (cores_ > 1 && timestep_start_ == 0) decompose();
+    ProcessSolverWrapper::initialize();
+  }
+
+ private:
+  OpenFoamSolverWrapper(const Settings& settings, const RunSettings& run,
+                        std::vector<std::string> boundary_names, int cores)
+      : ProcessSolverWrapper(settings, run, pimple_foam_command(boundary_names, cores)),
+        boundary_names_(std::move(boundary_names)),
+        cores_(cores),
+        delta_t_(run.delta_t),
+        timestep_start_(run.timestep_start) {}
+
+  void decompose() {
+    check();
+    const auto log = working_directory() / "log.decomposePar";
+    ChildOptions options;
+    options.command = {"decomposePar", "-force"};
+    options.working_directory = working_directory();
+    options.environment = {{"WM_PROJECT_DIR", "/usr/share/openfoam"}};
+    options.log_file = log;
+    try {
+      ChildProcess decompose_par(options);
+      if (decompose_par.wait_for_exit(kDecomposeTimeoutSeconds) && decompose_par.exit_code() == 0)
+        return;
+      const std::string what = decompose_par.running() ? fmt::format("did not finish within {} s",
+                                                                     kDecomposeTimeoutSeconds)
+                                                       : decompose_par.describe_exit();
+      decompose_par.stop(2.0);
+      throw SolverError(
+          name(),
+          fmt::format("solver '{}': decomposePar {} in {}; last lines of {}:\n{}", name(), what,
+                      working_directory().string(), log.string(), read_last_lines(log, 20)));
+    } catch (const SolverError&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw SolverError(name(), "solver '" + name() + "': cannot run decomposePar: " + e.what());
+    }
+  }
+
+  static constexpr double kDecomposeTimeoutSeconds = 600.0;
+  std::vector<std::string> boundary_names_;
+  int cores_;
+  double delta_t_;
+  int timestep_start_;
+};
+
+}  // namespace
+
+COCOPP_REGISTER(SolverWrapperRegistry, "openfoam", OpenFoamSolverWrapper)
+
+}  // namespace cocopp

@@ -1,0 +1,438 @@
+#include "solver_wrappers/openfoam/pimple_foam_solver.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+#include "displacementMotionSolver.H"
+#include "dynamicMotionSolverFvMesh.H"
+#include "fixedValuePointPatchFields.H"
+#include "points0MotionSolver.H"
+
+namespace cocopp::openfoam {
+
+using namespace Foam;
+
+/// Copies of the fields of one type that OpenFOAM writes (the solution: U, p, phi, Uf,
+/// turbulence fields, cellDisplacement, pointDisplacement, ...), by name.
+template <class Field>
+class FieldCopies {
+ public:
+  void store(const objectRegistry& registry) {
+    copies_.clear();
+    const HashTable<const Field*> fields = registry.lookupClass<Field>();
+    for (const word& name : fields.sortedToc()) {
+      const Field* field = fields[name];
+      if (field->writeOpt() != IOobject::AUTO_WRITE) continue;
+      IOobject io(field->name() + "_cocoppStepStart", field->instance(), field->db(),
+                  IOobject::NO_READ, IOobject::NO_WRITE, false);
+      copies_.emplace_back(field->name(), std::make_unique<Field>(io, *field));
+    }
+  }
+  void restore(const objectRegistry& registry) const {
+    for (const auto& [name, copy] : copies_)
+      const_cast<Field&>(registry.lookupObject<Field>(name)) == *copy;
+  }
+
+ private:
+  std::vector<std::pair<word, std::unique_ptr<Field>>> copies_;
+};
+
+/// The state at the start of a time step that every coupling iteration starts from.
+class StepStartState {
+ public:
+  void store(const fvMesh& mesh) {
+    points_ = mesh.points();
+    vol_scalars_.store(mesh);
+    vol_vectors_.store(mesh);
+    vol_symm_tensors_.store(mesh);
+    surface_scalars_.store(mesh);
+    surface_vectors_.store(mesh);
+    point_vectors_.store(mesh);
+  }
+  void restore(fvMesh& mesh) const {
+    // Back to the mesh of the step's start: the motion solver and the discretisation depend
+    // on the current geometry. The old-time points and volumes of the step stay as they are.
+    mesh.movePoints(points_);
+    vol_scalars_.restore(mesh);
+    vol_vectors_.restore(mesh);
+    vol_symm_tensors_.restore(mesh);
+    surface_scalars_.restore(mesh);
+    surface_vectors_.restore(mesh);
+    point_vectors_.restore(mesh);
+  }
+
+ private:
+  pointField points_;
+  FieldCopies<volScalarField> vol_scalars_;
+  FieldCopies<volVectorField> vol_vectors_;
+  FieldCopies<volSymmTensorField> vol_symm_tensors_;
+  FieldCopies<surfaceScalarField> surface_scalars_;
+  FieldCopies<surfaceVectorField> surface_vectors_;
+  FieldCopies<pointVectorField> point_vectors_;
+};
+
+namespace {
+
+/// Run `action`, turning OpenFOAM's errors (thrown, see main) into std::runtime_error with
+/// OpenFOAM's message, which the SDK sends to the coupler. The log gets the full error.
+template <class Action>
+auto reporting_foam_errors(Action&& action) {
+  try {
+    return action();
+  } catch (const Foam::error& e) {
+    Perr << nl << e << endl;
+    throw std::runtime_error(std::string(e.message()));
+  }
+}
+
+/// decomposePar's map from a processor mesh to the undecomposed one.
+labelIOList read_addressing(const fvMesh& mesh, const word& name) {
+  return labelIOList(IOobject(name, mesh.facesInstance(), polyMesh::meshSubDir, mesh,
+                              IOobject::MUST_READ, IOobject::NO_WRITE, false));
+}
+
+std::string patch_list(const wordList& names) {
+  std::string text;
+  for (const word& name : names) text += (text.empty() ? "" : ", ") + name;
+  return text;
+}
+
+}  // namespace
+
+PimpleFoamSolver::PimpleFoamSolver(argList& args, const wordList& patch_names)
+    : args_(args), patch_names_(patch_names), step_start_(std::make_unique<StepStartState>()) {}
+
+PimpleFoamSolver::~PimpleFoamSolver() = default;
+
+sdk::InterfaceDescription PimpleFoamSolver::initialize(const sdk::RunInfo& run) {
+  return reporting_foam_errors([&] {
+    create_case(run);
+    find_patches();
+    check_run(run);
+    return interface_description();
+  });
+}
+
+void PimpleFoamSolver::create_case(const sdk::RunInfo& run) {
+  run_time_.reset(new Time(Time::controlDictName, args_));
+  Time& runTime = *run_time_;
+  start_at_coupler_step(run);
+  Info << "Create mesh for time = " << runTime.timeName() << nl << endl;
+  mesh_ = dynamicFvMesh::New(args_, runTime);
+  dynamicFvMesh& mesh = *mesh_;
+  if (!isA<dynamicMotionSolverFvMesh>(mesh))
+    FatalErrorInFunction << "cocoppPimpleFoam moves the mesh with a motion solver: set "
+                         << "dynamicFvMesh dynamicMotionSolverFvMesh in "
+                         << runTime.constant() / "dynamicMeshDict" << exit(FatalError);
+  const motionSolver& motion = refCast<const dynamicMotionSolverFvMesh>(mesh).motion();
+  if (!isA<displacementMotionSolver>(motion))
+    FatalErrorInFunction << "cocoppPimpleFoam needs a displacement motion solver (e.g. "
+                         << "displacementLaplacian) in " << runTime.constant() / "dynamicMeshDict"
+                         << ", not " << motion.type() << exit(FatalError);
+
+  pimple_.reset(new pimpleControl(mesh));
+  const dictionary& pimple_dict = pimple_->dict();
+  correct_phi_ = pimple_dict.lookupOrDefault("correctPhi", mesh.dynamic());
+  check_mesh_courant_number_ = pimple_dict.lookupOrDefault("checkMeshCourantNo", false);
+  move_mesh_outer_correctors_ = pimple_dict.lookupOrDefault("moveMeshOuterCorrectors", false);
+  if (runTime.controlDict().lookupOrDefault("adjustTimeStep", false))
+    FatalIOErrorInFunction(runTime.controlDict())
+        << "adjustTimeStep is on: the coupler sets the time step; remove it or set it to no"
+        << exit(FatalIOError);
+
+  // pimpleFoam's createFields.H.
+  Info << "Reading field p\n" << endl;
+  p_.reset(new volScalarField(
+      IOobject("p", runTime.timeName(), mesh, IOobject::MUST_READ, IOobject::AUTO_WRITE), mesh));
+  Info << "Reading field U\n" << endl;
+  U_.reset(new volVectorField(
+      IOobject("U", runTime.timeName(), mesh, IOobject::MUST_READ, IOobject::AUTO_WRITE), mesh));
+  phi_.reset(new surfaceScalarField(
+      IOobject("phi", runTime.timeName(), mesh, IOobject::READ_IF_PRESENT, IOobject::AUTO_WRITE),
+      fvc::flux(*U_)));
+  setRefCell(*p_, pimple_dict, p_ref_cell_, p_ref_value_);
+  mesh.setFluxRequired(p_->name());
+  laminar_transport_.reset(new singlePhaseTransportModel(*U_, *phi_));
+  turbulence_ = incompressible::turbulenceModel::New(*U_, *phi_, *laminar_transport_);
+  MRF_.reset(new IOMRFZoneList(mesh));
+  fv_options_ = &fv::options::New(mesh);
+  // createUfIfPresent.H
+  Uf_.reset(new surfaceVectorField(
+      IOobject("Uf", runTime.timeName(), mesh, IOobject::READ_IF_PRESENT, IOobject::AUTO_WRITE),
+      fvc::interpolate(*U_)));
+  turbulence_->validate();
+
+  // Loads in Pa: pimpleFoam works with kinematic pressure and stress.
+  if (!laminar_transport_->found("rho"))
+    FatalIOErrorInFunction(*laminar_transport_)
+        << "the fluid density rho (kg/m^3) is missing: cocoppPimpleFoam returns loads in Pa, "
+        << "the kinematic pressure and stress times rho" << exit(FatalIOError);
+  rho_ = dimensionedScalar("rho", dimDensity, *laminar_transport_).value();
+}
+
+void PimpleFoamSolver::start_at_coupler_step(const sdk::RunInfo& run) {
+  // The coupler's start step picks the time directory (a restart), whatever startFrom says.
+  Time& runTime = *run_time_;
+  const scalar start = run.timestep_start * run.delta_t;
+  const instant closest = runTime.findClosestTime(start);
+  if (std::abs(closest.value() - start) > 1e-6 * run.delta_t)
+    FatalErrorInFunction << "the coupler starts at step " << run.timestep_start << " (time "
+                         << start << ") but the case has no time directory for it; its times: "
+                         << runTime.times() << exit(FatalError);
+  if (closest.value() != runTime.value() || run.timestep_start != runTime.timeIndex()) {
+    Info << "Starting at time " << closest.name() << ", the coupler's step " << run.timestep_start
+         << nl << endl;
+    runTime.setTime(closest, run.timestep_start);
+  }
+}
+
+void PimpleFoamSolver::find_patches() {
+  const polyBoundaryMesh& boundary = mesh_->boundaryMesh();
+  if (patch_names_.empty())
+    FatalErrorInFunction << "no interface patches: give them with -patches '(name ...)'"
+                         << exit(FatalError);
+  // The undecomposed mesh's labels of this rank's points and faces.
+  const labelList point_labels = Pstream::parRun()
+                                     ? labelList(read_addressing(*mesh_, "pointProcAddressing"))
+                                     : identity(mesh_->nPoints());
+  labelList face_labels = Pstream::parRun()
+                              ? labelList(read_addressing(*mesh_, "faceProcAddressing"))
+                              : identity(mesh_->nFaces());
+  if (Pstream::parRun())
+    for (label& face : face_labels) face = mag(face) - 1;  // stored +-(label + 1), - if flipped
+  patch_ids_.setSize(patch_names_.size());
+  forAll(patch_names_, i) {
+    patch_ids_[i] = boundary.findPatchID(patch_names_[i]);
+    if (patch_ids_[i] < 0)
+      FatalErrorInFunction << "interface patch " << patch_names_[i] << " is not in "
+                           << mesh_->boundaryMesh().objectPath()
+                           << "; the patches are: " << boundary.names() << exit(FatalError);
+    if (!isA<fixedValuePointPatchVectorField>(point_displacement().boundaryField()[patch_ids_[i]]))
+      FatalErrorInFunction << "pointDisplacement on interface patch " << patch_names_[i]
+                           << " is of type "
+                           << point_displacement().boundaryField()[patch_ids_[i]].type()
+                           << ": it must be fixedValue (cocoppPimpleFoam sets its values) in "
+                           << run_time_->timePath() / "pointDisplacement" << exit(FatalError);
+    numbering_.emplace_back(boundary[patch_ids_[i]], point_labels, face_labels);
+  }
+}
+
+void PimpleFoamSolver::check_run(const sdk::RunInfo& run) const {
+  const Time& runTime = *run_time_;
+  const scalar delta_t = runTime.deltaTValue();
+  if (std::abs(delta_t - run.delta_t) > 1e-12 * std::abs(run.delta_t))
+    FatalIOErrorInFunction(runTime.controlDict())
+        << "deltaT " << delta_t << " in controlDict differs from the coupler's delta_t "
+        << run.delta_t << exit(FatalIOError);
+}
+
+const pointField& PimpleFoamSolver::initial_points() const {
+  const auto& mesh = refCast<const dynamicMotionSolverFvMesh>(*mesh_);
+  return refCast<const points0MotionSolver>(mesh.motion()).points0();
+}
+
+pointVectorField& PimpleFoamSolver::point_displacement() {
+  auto& mesh = refCast<const dynamicMotionSolverFvMesh>(*mesh_);
+  // motion() is const only: the displacement is the motion solver's input we set.
+  return const_cast<displacementMotionSolver&>(
+             refCast<const displacementMotionSolver>(mesh.motion()))
+      .pointDisplacement();
+}
+
+sdk::InterfaceDescription PimpleFoamSolver::interface_description() const {
+  sdk::InterfaceDescription description;
+  const pointField& points0 = initial_points();
+  forAll(patch_ids_, i) {
+    const polyPatch& patch = mesh_->boundaryMesh()[patch_ids_[i]];
+    const PatchNumbering& numbering = numbering_[i];
+    // Coordinates of the initial mesh (a restart may start moved); face centres likewise.
+    const auto point_coordinates =
+        numbering.gather_points(flatten(pointField(points0, patch.meshPoints())), 3);
+    pointField centres(patch.size());
+    forAll(patch, face_i) centres[face_i] = patch[face_i].centre(points0);
+    const auto face_coordinates = numbering.gather_faces(flatten(centres), 3);
+    const auto ids = [](const std::vector<label>& labels) {
+      return std::vector<std::int64_t>(labels.begin(), labels.end());
+    };
+    description.model_parts.push_back({patch_names_[i] + "_points",
+                                       ids(numbering.point_ids()),
+                                       point_coordinates,
+                                       {"displacement"},
+                                       {}});
+    description.model_parts.push_back({patch_names_[i] + "_faces",
+                                       ids(numbering.face_ids()),
+                                       face_coordinates,
+                                       {},
+                                       {"pressure", "traction"}});
+  }
+  description.initial_output = loads();
+  return description;
+}
+
+std::size_t PimpleFoamSolver::input_size() const {
+  std::size_t size = 0;
+  for (const PatchNumbering& numbering : numbering_) size += 3 * numbering.point_ids().size();
+  return size;
+}
+
+void PimpleFoamSolver::initialize_step(std::int32_t step, double time) {
+  reporting_foam_errors([&] {
+    Time& runTime = *run_time_;
+    if (!runTime.run())  // also runs the function objects of the last step, as pimpleFoam
+      FatalIOErrorInFunction(runTime.controlDict())
+          << "the coupler asks for step " << step << " (time " << time << ") but endTime is "
+          << runTime.endTime().value() << ": raise endTime in controlDict" << exit(FatalIOError);
+    ++runTime;
+    stepped_ = true;
+    if (std::abs(runTime.value() - time) > 1e-6 * runTime.deltaTValue())
+      FatalErrorInFunction << "time " << runTime.timeName() << " after advancing, but the "
+                           << "coupler's step " << step << " is at time " << time
+                           << exit(FatalError);
+    Info << "Time = " << runTime.timeName() << nl << endl;
+    const dictionary& pimple_dict = pimple_->dict();
+    correct_phi_ = pimple_dict.lookupOrDefault("correctPhi", correct_phi_);
+    check_mesh_courant_number_ =
+        pimple_dict.lookupOrDefault("checkMeshCourantNo", check_mesh_courant_number_);
+    move_mesh_outer_correctors_ =
+        pimple_dict.lookupOrDefault("moveMeshOuterCorrectors", move_mesh_outer_correctors_);
+    step_start_->store(*mesh_);
+    iteration_ = 0;
+  });
+}
+
+std::vector<double> PimpleFoamSolver::solve(const std::vector<double>& input) {
+  return reporting_foam_errors([&] {
+    if (input.size() != input_size())
+      FatalErrorInFunction << "solve was given " << label(input.size())
+                           << " displacement values; the interface patches "
+                           << patch_list(patch_names_) << " have " << label(input_size())
+                           << exit(FatalError);
+    using Clock = std::chrono::steady_clock;
+    const auto start = Clock::now();
+    auto restored = start;
+    if (++iteration_ > 1) {
+      restore_step_start();
+      Info << "Coupling iteration " << iteration_ << ": solving time " << run_time_->timeName()
+           << " again from the start of the step" << nl << endl;
+      restored = Clock::now();
+    }
+    set_interface_displacement(input);
+    const auto pimple_start = Clock::now();
+    solve_pimple();
+    const auto pimple_end = Clock::now();
+    std::vector<double> output = loads();
+    // What the coupling adds inside the solver (restoring the step's start, the interface
+    // data) against the PIMPLE solve itself: read by bench/openfoam_overhead.
+    const std::chrono::duration<double> pimple = pimple_end - pimple_start;
+    const std::chrono::duration<double> restore = restored - start;
+    const std::chrono::duration<double> interface =
+        (pimple_start - restored) + (Clock::now() - pimple_end);
+    Info << "cocopp coupling iteration " << iteration_ << ": PIMPLE " << pimple.count()
+         << " s, restore " << restore.count() << " s, interface " << interface.count() << " s" << nl
+         << endl;
+    return output;
+  });
+}
+
+void PimpleFoamSolver::restore_step_start() {
+  step_start_->restore(*mesh_);
+  // PIMPLE's residual controls look at the first solve of the time step.
+  const_cast<dictionary&>(mesh_->solverPerformanceDict()).clear();
+}
+
+void PimpleFoamSolver::set_interface_displacement(const std::vector<double>& input) {
+  pointVectorField& displacement = point_displacement();
+  std::size_t offset = 0;
+  forAll(patch_ids_, i) {
+    const labelList& positions = numbering_[i].local_point_positions();
+    vectorField values(positions.size());
+    forAll(values, point) for (direction d = 0; d < 3; ++d) values[point][d] =
+        input[offset + 3 * positions[point] + d];
+    refCast<fixedValuePointPatchVectorField>(displacement.boundaryFieldRef()[patch_ids_[i]]) ==
+        values;
+    offset += 3 * numbering_[i].point_ids().size();
+  }
+}
+
+void PimpleFoamSolver::solve_pimple() {
+  // pimpleFoam's names, so that its equation files (UEqn.H, pEqn.H, correctPhi.H) read as
+  // they are.
+  Time& runTime = *run_time_;
+  dynamicFvMesh& mesh = *mesh_;
+  pimpleControl& pimple = *pimple_;
+  volScalarField& p = *p_;
+  volVectorField& U = *U_;
+  surfaceScalarField& phi = *phi_;
+  autoPtr<surfaceVectorField>& Uf = Uf_;
+  singlePhaseTransportModel& laminarTransport = *laminar_transport_;
+  autoPtr<incompressible::turbulenceModel>& turbulence = turbulence_;
+  IOMRFZoneList& MRF = *MRF_;
+  fv::options& fvOptions = *fv_options_;
+  const label pRefCell = p_ref_cell_;
+  const scalar pRefValue = p_ref_value_;
+  scalar& cumulativeContErr = cumulative_continuity_error_;
+  using Foam::solve;  // not this class's solve()
+
+  while (pimple.loop()) {
+    if (pimple.firstIter() || move_mesh_outer_correctors_) {
+      mesh.controlledUpdate();  // solves the motion with the interface displacement
+      if (mesh.changing()) {
+        MRF.update();
+        if (correct_phi_) {
+          // The absolute flux from the mapped surface velocity
+          phi = mesh.Sf() & Uf();
+#include "correctPhi.H"
+          // relative to the mesh motion
+          fvc::makeRelative(phi, U);
+        }
+        if (check_mesh_courant_number_) {
+#include "meshCourantNo.H"
+        }
+      }
+    }
+#include "UEqn.H"
+    while (pimple.correct()) {
+#include "pEqn.H"
+    }
+    if (pimple.turbCorr()) {
+      laminarTransport.correct();
+      turbulence->correct();
+    }
+  }
+  (void)runTime;  // used by some of the included files only
+}
+
+std::vector<double> PimpleFoamSolver::loads() const {
+  std::vector<double> values;  // gathered on the master
+  const tmp<volSymmTensorField> deviatoric_stress = turbulence_->devReff();  // kinematic
+  // The output layout: per patch (model part P_faces) the pressures, then the tractions.
+  forAll(patch_ids_, i) {
+    const label id = patch_ids_[i];
+    const scalarField pressure(rho_ * p_->boundaryField()[id]);
+    const vectorField normals(mesh_->boundary()[id].nf());
+    const vectorField traction(rho_ * (normals & deviatoric_stress().boundaryField()[id]));
+    for (const auto& part : {numbering_[i].gather_faces(pressure, 1),
+                             numbering_[i].gather_faces(flatten(traction), 3)})
+      values.insert(values.end(), part.begin(), part.end());
+  }
+  return values;
+}
+
+void PimpleFoamSolver::finalize_step() {
+  reporting_foam_errors([&] {
+    run_time_->write();  // when controlDict's writeControl says so
+    run_time_->printExecutionTime(Info);
+  });
+}
+
+void PimpleFoamSolver::finalize() {
+  reporting_foam_errors([&] {
+    // pimpleFoam's last runTime.run(): the function objects of the last step, then their end.
+    if (stepped_ && run_time_->run()) run_time_->functionObjects().end();
+    Info << "End\n" << endl;
+  });
+}
+
+}  // namespace cocopp::openfoam

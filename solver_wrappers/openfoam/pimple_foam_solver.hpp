@@ -1,0 +1,99 @@
+#pragma once
+// PimpleFoamSolver: OpenFOAM's pimpleFoam (transient incompressible flow, PIMPLE, moving mesh)
+// as a cocopp solver that stays running for the whole simulation.
+//
+// Per time step the time advances once (initialize_step). Per coupling iteration (solve) the
+// absolute displacement of the interface patch points (relative to the initial mesh,
+// points0) becomes the fixedValue of `pointDisplacement` on those patches, the mesh moves with
+// the case's motion solver and the PIMPLE loop runs. Every solve of a step starts from the
+// state at the start of the step: the solution fields (every registered field that OpenFOAM
+// writes) and the mesh points are put back first, so repeated iterations do not drift and the
+// first one is exactly pimpleFoam's time step. Committing a step (finalize_step) writes the
+// fields when controlDict says so.
+//
+// Interface, per patch P of `-patches`: model part `P_points` (the patch points, ids = mesh
+// point labels; input `displacement`) and `P_faces` (the face centres, ids = mesh face labels;
+// output `pressure` and `traction`), both sorted by label of the undecomposed mesh, so that a
+// parallel run has the interface of the serial one. In parallel every rank runs this class;
+// the master gathers the loads (see ParallelSolver in main_cocopp_pimple_foam.cpp). Loads are in
+// Pa: the kinematic pressure and stress times `rho` from constant/transportProperties. `traction`
+// is the viscous force per area of the fluid on the wall, rho * (n & devReff) with n the outward
+// normal of the fluid domain (= -rho * OpenFOAM's wallShearStress).
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "CorrectPhi.H"
+#include "dynamicFvMesh.H"
+#include "fvCFD.H"
+#include "fvOptions.H"
+#include "pimpleControl.H"
+#include "singlePhaseTransportModel.H"
+#include "solver_wrappers/openfoam/patch_numbering.hpp"
+#include "solver_wrappers/sdk/solver_sdk.hpp"
+#include "turbulentTransportModel.H"
+
+namespace cocopp::openfoam {
+
+class StepStartState;
+
+class PimpleFoamSolver : public sdk::Solver {
+ public:
+  PimpleFoamSolver(Foam::argList& args, const Foam::wordList& patch_names);
+  ~PimpleFoamSolver() override;
+
+  sdk::InterfaceDescription initialize(const sdk::RunInfo& run) override;
+  void initialize_step(std::int32_t step, double time) override;
+  std::vector<double> solve(const std::vector<double>& input) override;
+  void finalize_step() override;
+  void finalize() override;
+
+ private:
+  /// What pimpleFoam creates before its time loop (createTime, the mesh, createFields, ...).
+  void create_case(const sdk::RunInfo& run);
+  void start_at_coupler_step(const sdk::RunInfo& run);
+  void find_patches();
+  void check_run(const sdk::RunInfo& run) const;
+  const Foam::pointField& initial_points() const;
+  Foam::pointVectorField& point_displacement();
+  /// The state at the start of the step, for every solve of the step.
+  void store_step_start();
+  void restore_step_start();
+  void set_interface_displacement(const std::vector<double>& input);
+  /// One PIMPLE time step without advancing time: the body of pimpleFoam's time loop.
+  void solve_pimple();
+  std::vector<double> loads() const;
+  sdk::InterfaceDescription interface_description() const;
+  std::size_t input_size() const;
+
+  Foam::argList& args_;
+  Foam::wordList patch_names_;
+  Foam::labelList patch_ids_;
+  std::vector<PatchNumbering> numbering_;  ///< per patch: the coupler's order
+  double rho_ = 0.0;
+
+  Foam::autoPtr<Foam::Time> run_time_;
+  Foam::autoPtr<Foam::dynamicFvMesh> mesh_;
+  Foam::autoPtr<Foam::pimpleControl> pimple_;
+  Foam::autoPtr<Foam::volScalarField> p_;
+  Foam::autoPtr<Foam::volVectorField> U_;
+  Foam::autoPtr<Foam::surfaceScalarField> phi_;
+  Foam::autoPtr<Foam::surfaceVectorField> Uf_;
+  Foam::autoPtr<Foam::singlePhaseTransportModel> laminar_transport_;
+  Foam::autoPtr<Foam::incompressible::turbulenceModel> turbulence_;
+  Foam::autoPtr<Foam::IOMRFZoneList> MRF_;
+  Foam::fv::options* fv_options_ = nullptr;
+  Foam::label p_ref_cell_ = 0;
+  Foam::scalar p_ref_value_ = 0.0;
+  Foam::scalar cumulative_continuity_error_ = 0.0;
+  bool correct_phi_ = false;
+  bool check_mesh_courant_number_ = false;
+  bool move_mesh_outer_correctors_ = false;
+
+  std::unique_ptr<StepStartState> step_start_;
+  int iteration_ = 0;
+  bool stepped_ = false;
+};
+
+}  // namespace cocopp::openfoam
