@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Install the Debian 12 packages cocopp needs to build, test and plot. Idempotent: does nothing
-# when everything is there already. Run as root (or with sudo).
+# Install the Debian 12 packages cocopp needs to build, test and plot, and the external solver
+# the tests run (calculix-ccx: the CalculiX structural solver, /usr/bin/ccx). Idempotent: does
+# nothing when everything is there already. Run as root (or with sudo).
 set -euo pipefail
 
 packages=(
@@ -10,6 +11,7 @@ packages=(
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   python3-h5py python3-matplotlib python3-numpy
   clang-format
+  calculix-ccx
 )
 
 missing=()
@@ -25,5 +27,5 @@ sudo_cmd=()
 [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
 echo "install-dependencies: installing ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
-"${sudo_cmd[@]}" apt-get update -q
-"${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+"${sudo_cmd[@]}" apt-get -o DPkg::Lock::Timeout=600 update -q
+"${sudo_cmd[@]}" apt-get -o DPkg::Lock::Timeout=600 install -y -q --no-install-recommends "${missing[@]}"
