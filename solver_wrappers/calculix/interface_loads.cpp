@@ -2,10 +2,19 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <fstream>
 #include <stdexcept>
 
 namespace cocopp::calculix {
+
+std::string ccx_number(double value) {
+  // ccx reads a number from the first 20 characters of its field and fails on (or, worse,
+  // silently truncates) longer text: 14 significant digits fit, far more than the .dat file's
+  // 7 that come back. Values below 1e-99 would need a third exponent digit.
+  if (std::abs(value) < 1e-99) return "0.";
+  return fmt::format("{:.13E}", value);
+}
 
 InterfaceLoads::InterfaceLoads(const InputDeck& deck, std::vector<ElementFace> faces)
     : deck_(deck), faces_(std::move(faces)) {
@@ -34,12 +43,11 @@ void InterfaceLoads::write(const std::filesystem::path& file, const Eigen::Vecto
   std::ofstream out(file);
   if (!out) throw std::runtime_error("cannot write the loads file " + file.string());
   out << "** Interface loads of this coupling iteration, written by cocopp\n";
-  // Shortest text that reads back as the same double: the coupler's values reach ccx exactly.
   if (pressure.size() > 0) {
     out << "*DLOAD\n";
     for (std::size_t f = 0; f < faces_.size(); ++f)
       out << fmt::format("{}, P{}, {}\n", faces_[f].element, faces_[f].face,
-                         pressure[static_cast<Eigen::Index>(f)]);
+                         ccx_number(pressure[static_cast<Eigen::Index>(f)]));
   }
   if (traction.size() > 0) {
     out << "*CLOAD\n";
@@ -49,7 +57,7 @@ void InterfaceLoads::write(const std::filesystem::path& file, const Eigen::Vecto
           transform ? Eigen::Vector3d(transform->axes_at(deck_.node(node)) * global_force)
                     : global_force;
       for (int dof = 0; dof < (plane_ ? 2 : 3); ++dof)
-        out << fmt::format("{}, {}, {}\n", node, dof + 1, force[dof]);
+        out << fmt::format("{}, {}, {}\n", node, dof + 1, ccx_number(force[dof]));
     }
   }
   if (!out.flush()) throw std::runtime_error("cannot write the loads file " + file.string());

@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 #include <filesystem>
 #include <map>
+#include <string>
 #include <vector>
 
 #include "coupler/data/interface.hpp"
@@ -19,6 +20,9 @@
 #include "solver_wrappers/calculix/input_deck.hpp"
 
 namespace cocopp::calculix {
+
+/// A number as ccx can read it: at most 20 characters, 14 significant digits.
+std::string ccx_number(double value);
 
 class InterfaceLoads {
  public:

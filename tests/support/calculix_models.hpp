@@ -5,7 +5,8 @@
 //   a cylindrical *TRANSFORM and zero hoop displacement: the axisymmetric model the wrapper
 //   uses (Debian's ccx cannot restart CAX elements). Surface INNER (faces on r = ri, loads),
 //   node sets INNERN (nodes on r = ri), NALL, SUPPORT (the outer edge at z = 0).
-// - a plane-strain strip of CPE8 elements (Lx x Ly, thickness t), clamped at y = 0: surface
+// - a plane-strain strip of CPE8 elements (Lx x Ly, thickness t), on rollers at y = 0 (x held at
+//   one corner): surface
 //   TOP (faces on y = Ly) and node sets TOPN, BOTTOM.
 #include <cmath>
 #include <sstream>
@@ -165,7 +166,7 @@ struct PlaneStrainStrip {
     for (int m = 0; m < nx; ++m) out << 1 + m + nx * (ny - 1) << ", S3\n";
     out << "*MATERIAL, NAME=STEEL\n*ELASTIC\n" << young << ", " << poisson << "\n";
     out << "*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL\n" << thickness << "\n";
-    out << "*BOUNDARY\nBOTTOM, 1, 2\n";
+    out << "*BOUNDARY\nBOTTOM, 2, 2\n" << id(0, 0) << ", 1, 1\n";
     out << "*STEP\n*STATIC\n" << extra_step_cards << "*END STEP\n";
     return out.str();
   }
