@@ -57,7 +57,7 @@ struct SectorCylinder {
     const auto id = [&](int i, int j, int k) { return 1 + i + ni * (j + nj * k); };
     const auto exists = [](int i, int j, int k) { return (i % 2) + (j % 2) + (k % 2) <= 1; };
     std::ostringstream out;
-    out.precision(17);
+    out.precision(13);  // ccx reads numbers from 20-character fields
     out << "** Thick-walled cylinder: " << angle_degrees << " degree sector of C3D20R\n";
     out << "*NODE, NSET=NALL\n";
     for (int k = 0; k < nk; ++k)
@@ -144,7 +144,7 @@ struct PlaneStrainStrip {
     const int ni = 2 * nx + 1, nj = 2 * ny + 1;
     const auto id = [&](int i, int j) { return 1 + i + ni * j; };
     std::ostringstream out;
-    out.precision(17);
+    out.precision(13);  // ccx reads numbers from 20-character fields
     out << "*NODE, NSET=NALL\n";
     for (int j = 0; j < nj; ++j)
       for (int i = 0; i < ni; ++i)
