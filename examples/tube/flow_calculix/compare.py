@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Compare the tube wall of this example (CalculiX sector) with examples/tube/flow_structure
 (the built-in tube structure): radial wall displacement at three points over time, and along
-the tube at three times. Both runs must be done first:
+the tube at three times, over the 35 steps of this example. Both runs must be done first:
 
   build/bin/cocopp run examples/tube/flow_structure/case.yaml
   build/bin/cocopp run examples/tube/flow_calculix/case.yaml
@@ -36,6 +36,8 @@ def main():
     parser.add_argument("-o", "--output", default=os.path.join(HERE, "comparison.png"))
     arguments = parser.parse_args()
     data = {label: load(path) for label, path in RUNS.items()}
+    steps = min(len(time) for time, _, _ in data.values())
+    data = {label: (time[:steps], z, radial[:steps]) for label, (time, z, radial) in data.items()}
     figure, (history, profile) = plt.subplots(1, 2, figsize=(12, 4.5))
     styles = ["-", "--"]
     for (label, (time, z, radial)), style in zip(data.items(), styles):
@@ -43,10 +45,10 @@ def main():
             i = int(np.argmin(np.abs(z - position)))
             history.plot(time * 1e3, radial[:, i] * 1e6, style, color=colour,
                          label="%s, z = %.0f mm" % (label.split(" (")[0], z[i] * 1e3))
-        for step, colour in zip([30, 60, 100], ["C3", "C4", "C5"]):
+        for step, colour in zip([10, 20, 35], ["C3", "C4", "C5"]):
             row = int(np.flatnonzero(np.isclose(time, step * 1e-4))[0])
             profile.plot(z * 1e3, radial[row] * 1e6, style, color=colour,
-                         label="%s, t = %.0f ms" % (label.split(" (")[0], time[row] * 1e3))
+                         label="%s, t = %.1f ms" % (label.split(" (")[0], time[row] * 1e3))
     history.set_xlabel("t (ms)")
     history.set_ylabel("radial wall displacement (µm)")
     history.legend(fontsize=7)
