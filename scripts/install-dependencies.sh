@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Install the Debian 12 packages cocopp needs to build, test and plot. Idempotent: does nothing
-# when everything is there already. Run as root (or with sudo). Also installs OpenFOAM
-# (scripts/install-openfoam.sh).
+# Install the Debian 12 packages cocopp needs to build, test and plot, and the external solvers
+# the tests run: calculix-ccx (the CalculiX structural solver, /usr/bin/ccx) and OpenFOAM with
+# the headers cocoppPimpleFoam compiles against (scripts/install-openfoam.sh). Idempotent: does
+# nothing when everything is there already. Run as root (or with sudo).
 set -euo pipefail
 
 packages=(
@@ -11,6 +12,7 @@ packages=(
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   python3-h5py python3-matplotlib python3-numpy python3-yaml
   clang-format
+  calculix-ccx
 )
 
 missing=()

@@ -1,0 +1,315 @@
+#include "solver_wrappers/calculix/calculix_solver_wrapper.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+
+#include "coupler/case/suggest.hpp"
+#include "solver_wrappers/calculix/ccx_run.hpp"
+#include "solver_wrappers/calculix/dat_file.hpp"
+#include "solver_wrappers/process/child_process.hpp"
+#include "solver_wrappers/solver_error.hpp"
+
+namespace cocopp {
+
+COCOPP_REGISTER(SolverWrapperRegistry, "calculix", CalculixSolverWrapper)
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+void write_lines(std::ofstream& out, const std::vector<calculix::DeckLine>& lines) {
+  for (const auto& line : lines) out << line.text << "\n";
+}
+
+}  // namespace
+
+CalculixSolverWrapper::CalculixSolverWrapper(const Settings& settings, const RunSettings& run)
+    : run_(run) {
+  name_ = settings.get<std::string>("name", "calculix");
+  if (name_.empty()) settings.fail("name", "must not be empty");
+  working_directory_ = std::filesystem::absolute(
+                           run.case_directory / settings.required<std::string>("working_directory"))
+                           .lexically_normal();
+  working_directory_where_ = settings.where("working_directory");
+  input_file_ = settings.required<std::string>("input_file");
+  input_file_where_ = settings.where("input_file");
+  if (std::filesystem::path(input_file_).stem() == kJob)
+    settings.fail("input_file", std::string("the name ") + kJob +
+                                    " is the wrapper's own job name: rename the deck");
+  surface_name_ = settings.required<std::string>("interface_surface");
+  node_set_name_ = settings.required<std::string>("interface_node_set");
+  executable_ = settings.get<std::string>("executable", "ccx");
+  executable_where_ = settings.has("executable") ? settings.where("executable") : settings.where();
+  input_variables_ =
+      settings.get<std::vector<std::string>>("input_variables", {"pressure", "traction"});
+  if (input_variables_.empty())
+    settings.fail("input_variables", "give at least one of pressure, traction");
+  for (const auto& variable : input_variables_)
+    if (variable != "pressure" && variable != "traction")
+      settings.fail("input_variables", "'" + variable + "': the loads are pressure and traction");
+  threads_ = settings.get_int_in_range("threads", 1, 1, 64);
+  timeout_ = settings.get_in_range("timeout", 600.0, Range::positive());
+  save_results_ = settings.get<bool>("save_results", true);
+  state_reset_key_ = settings.get_choice("state_reset", "auto", {"auto", "restart", "replay"});
+  log_file_ = working_directory_ / settings.get<std::string>("log_file", name_ + ".log");
+  if (run.timestep_start != 0)
+    settings.fail("type",
+                  "the calculix wrapper starts at time step 0 (restarting a coupled run "
+                  "from a saved state is not supported yet)");
+}
+
+CalculixSolverWrapper::~CalculixSolverWrapper() = default;
+
+std::string CalculixSolverWrapper::describe() const {
+  return fmt::format("{}: {} -i {} for {} (in {}; log {}; {} thread{}; state reset: {})", name_,
+                     executable_, kJob, input_file_, working_directory_.string(),
+                     log_file_.string(), threads_, threads_ == 1 ? "" : "s", state_reset_key_);
+}
+
+void CalculixSolverWrapper::check() const {
+  const std::string solver = "solver '" + name_ + "': ";
+  if (!std::filesystem::is_directory(working_directory_))
+    throw CaseError(working_directory_where_ + ": " + solver + "working directory " +
+                    working_directory_.string() + " does not exist");
+  if (!std::filesystem::is_regular_file(working_directory_ / input_file_))
+    throw CaseError(input_file_where_ + ": " + solver + "input deck " +
+                    (working_directory_ / input_file_).string() + " does not exist");
+  try {
+    find_executable(executable_, working_directory_);
+  } catch (const std::runtime_error& e) {
+    throw CaseError(executable_where_ + ": " + solver + "CalculiX (" + e.what() +
+                    "): install the Debian package calculix-ccx (scripts/install-dependencies.sh "
+                    "does) or give its path in 'executable'");
+  }
+}
+
+void CalculixSolverWrapper::initialize() {
+  check();
+  ccx_path_ = find_executable(executable_, working_directory_);
+  read_deck();
+  state_reset_ = StateReset::kRestart;
+  if (state_reset_key_ == "replay") state_reset_ = StateReset::kReplay;
+  if (state_reset_key_ == "auto")
+    for (const char* keyword : {"PLASTIC", "CREEP", "CYCLIC HARDENING", "USER MATERIAL", "DEPVAR"})
+      if (deck_->has_keyword(keyword)) state_reset_ = StateReset::kReplay;
+  build_interfaces();
+  // The model definition once; every first-step iteration includes it.
+  std::ofstream model(file(kModelFile));
+  write_lines(model, deck_->model_definition());
+  if (!model.flush()) fail("cannot write " + file(kModelFile).string());
+  std::filesystem::remove(file(kConvergedRestart));
+}
+
+void CalculixSolverWrapper::read_deck() {
+  try {
+    deck_ = std::make_unique<calculix::InputDeck>(
+        calculix::InputDeck::read(working_directory_ / input_file_, working_directory_));
+    if (deck_->procedure() == "DYNAMIC" &&
+        std::abs(deck_->step_time_period() - run_.delta_t) > 1e-9 * run_.delta_t)
+      throw calculix::DeckError(fmt::format(
+          "{}: the *DYNAMIC step's time period is {}, the coupling time step delta_t is {}: "
+          "they must be equal",
+          deck_->step().front().where, deck_->step_time_period(), run_.delta_t));
+    loads_ = std::make_unique<calculix::InterfaceLoads>(*deck_, deck_->surface(surface_name_));
+    if (loads_->faces().empty())
+      throw calculix::DeckError("surface " + surface_name_ + " has no faces");
+    interface_nodes_ = deck_->node_set(node_set_name_);
+    std::sort(interface_nodes_.begin(), interface_nodes_.end());
+    interface_nodes_.erase(std::unique(interface_nodes_.begin(), interface_nodes_.end()),
+                           interface_nodes_.end());
+    if (interface_nodes_.empty())
+      throw calculix::DeckError("node set " + node_set_name_ + " is empty");
+  } catch (const calculix::DeckError& e) {
+    throw CaseError(input_file_where_ + ": solver '" + name_ + "': " + e.what());
+  }
+}
+
+void CalculixSolverWrapper::build_interfaces() {
+  auto faces = std::make_shared<ModelPart>();
+  faces->name = surface_name_;
+  const auto& geometry = loads_->geometry();
+  faces->coordinates.resize(static_cast<Eigen::Index>(geometry.size()), 3);
+  for (std::size_t f = 0; f < geometry.size(); ++f) {
+    const auto& face = loads_->faces()[f];
+    faces->ids.push_back(face.element * 10 + face.face);  // element 12, face S3 -> 123
+    faces->coordinates.row(static_cast<Eigen::Index>(f)) = geometry[f].centroid.transpose();
+  }
+  auto nodes = std::make_shared<ModelPart>();
+  nodes->name = node_set_name_;
+  nodes->ids = interface_nodes_;
+  nodes->coordinates.resize(static_cast<Eigen::Index>(interface_nodes_.size()), 3);
+  for (std::size_t i = 0; i < interface_nodes_.size(); ++i)
+    nodes->coordinates.row(static_cast<Eigen::Index>(i)) =
+        deck_->node(interface_nodes_[i]).transpose();
+  input_interface_ = Interface({{faces, input_variables_}});
+  output_interface_ = Interface({{nodes, {"displacement"}}});
+}
+
+void CalculixSolverWrapper::initialize_step(int step, double /*time*/) {
+  step_ = step;
+  iteration_ = 0;
+}
+
+const Interface& CalculixSolverWrapper::solve(const Interface& input) {
+  if (!input.same_layout(input_interface_))
+    throw std::invalid_argument(
+        fmt::format("solver '{}': solve() was given {} but its input interface is {}", name_,
+                    input.describe(), input_interface_.describe()));
+  ++iteration_;
+  const auto start = Clock::now();
+  write_loads(input);
+  write_iteration_deck();
+  const std::filesystem::path results = file(std::string(kJob) + ".dat");
+  std::filesystem::remove(results);  // never read an earlier iteration's results
+  std::filesystem::remove(file(std::string(kJob) + ".rout"));
+  if (has_converged_restart_)
+    std::filesystem::copy_file(file(kConvergedRestart), file(std::string(kJob) + ".rin"),
+                               std::filesystem::copy_options::overwrite_existing);
+  const double prepare_seconds = seconds_since(start);
+
+  run_ccx();
+
+  const auto read_start = Clock::now();
+  try {
+    const RowMatrix displacement =
+        calculix::read_node_print(results, "displacements", node_set_name_, interface_nodes_);
+    output_interface_.values(node_set_name_, "displacement") = displacement;
+  } catch (const std::runtime_error& e) {
+    fail(fmt::format("solver '{}' at {}: {}", name_, position(), e.what()));
+  }
+  last_timing_.wrapper_seconds = prepare_seconds + seconds_since(read_start);
+  return output_interface_;
+}
+
+void CalculixSolverWrapper::write_loads(const Interface& input) const {
+  const auto has = [&](const char* variable) {
+    return std::find(input_variables_.begin(), input_variables_.end(), variable) !=
+           input_variables_.end();
+  };
+  Eigen::VectorXd pressure;
+  RowMatrix traction;
+  if (has("pressure")) pressure = input.values(surface_name_, "pressure").col(0);
+  if (has("traction")) traction = input.values(surface_name_, "traction");
+  if (!pressure.allFinite() || !traction.allFinite())
+    fail(fmt::format("solver '{}' at {}: the interface loads contain NaN or infinity", name_,
+                     position()));
+  loads_->write(file(kLoadsFile), pressure, traction);
+}
+
+void CalculixSolverWrapper::write_iteration_deck() const {
+  const std::filesystem::path deck_file = file(std::string(kJob) + ".inp");
+  std::ofstream out(deck_file);
+  out << "** Coupling iteration deck written by cocopp from " << input_file_ << "\n";
+  if (state_reset_ == StateReset::kRestart) {
+    if (has_converged_restart_) {
+      out << "** Restart from the converged state of the previous time step\n*RESTART, READ\n";
+    } else {
+      out << "*INCLUDE, INPUT=" << kModelFile << "\n";
+    }
+    out << "*RESTART, WRITE, FREQUENCY=1\n";
+  } else {
+    out << "*INCLUDE, INPUT=" << kModelFile << "\n";
+    out << "** The committed time steps again, with their converged loads\n";
+    for (const auto& loads : committed_loads_) write_step(out, loads, false);
+  }
+  write_step(out, kLoadsFile, true);
+  if (!out.flush()) fail("cannot write " + deck_file.string());
+}
+
+void CalculixSolverWrapper::write_step(std::ofstream& out, const std::string& loads_file,
+                                       bool print) const {
+  const auto& step = deck_->step();
+  write_lines(out, {step.begin(), step.end() - 1});  // all but *END STEP
+  out << "*INCLUDE, INPUT=" << loads_file << "\n";
+  if (print) out << "*NODE PRINT, NSET=" << node_set_name_ << ", GLOBAL=YES\nU\n";
+  out << step.back().text << "\n";
+}
+
+void CalculixSolverWrapper::run_ccx() {
+  calculix::CcxRunOptions options{ccx_path_, working_directory_, kJob,
+                                  log_file_, threads_,           timeout_};
+  calculix::CcxRunResult result;
+  try {
+    result = calculix::run_ccx(options);
+  } catch (const std::runtime_error& e) {
+    fail(fmt::format("solver '{}': cannot start ccx at {}: {}", name_, position(), e.what()));
+  }
+  last_timing_.ccx_seconds = result.seconds;
+  const std::string deck = file(std::string(kJob) + ".inp").string();
+  using Status = calculix::CcxRunResult::Status;
+  switch (result.status) {
+    case Status::kSuccess:
+      return;
+    case Status::kNotConverged:
+      fail(fmt::format(
+          "solver '{}': ccx did not converge at {} ({}: the increment size fell below the "
+          "minimum); deck {}, last lines of {}:\n{}",
+          name_, position(), result.exit_description, deck, log_file_.string(), result.details));
+    case Status::kDeckError:
+      fail(fmt::format(
+          "solver '{}': ccx rejected the input deck at {} ({}); deck {} (built from {}), "
+          "ccx says:\n{}(full output in {})",
+          name_, position(), result.exit_description, deck, input_file_, result.details,
+          log_file_.string()));
+    case Status::kTimedOut:
+      fail(
+          fmt::format("solver '{}': ccx did not finish within {} s at {} and was stopped; "
+                      "last lines of {}:\n{}",
+                      name_, timeout_, position(), log_file_.string(), result.details));
+    case Status::kFailed:
+      break;
+  }
+  fail(fmt::format("solver '{}': ccx {} at {}; deck {}, last lines of {}:\n{}", name_,
+                   result.exit_description, position(), deck, log_file_.string(),
+                   result.details.empty() ? "(the log is empty)" : result.details));
+}
+
+void CalculixSolverWrapper::finalize_step() {
+  if (iteration_ == 0)
+    fail(fmt::format("solver '{}': time step {} is committed without a coupling iteration", name_,
+                     step_));
+  // The last iteration is the converged one: its end state is the next step's start.
+  if (state_reset_ == StateReset::kReplay) {
+    const std::string loads = fmt::format("cocopp_loads_step{:05d}.inp", step_);
+    std::filesystem::copy_file(file(kLoadsFile), file(loads),
+                               std::filesystem::copy_options::overwrite_existing);
+    committed_loads_.push_back(loads);
+    return;
+  }
+  const std::filesystem::path restart = file(std::string(kJob) + ".rout");
+  if (!std::filesystem::exists(restart))
+    fail(fmt::format("solver '{}': ccx wrote no restart file {} at time step {}", name_,
+                     restart.string(), step_));
+  std::filesystem::rename(restart, file(kConvergedRestart));
+  has_converged_restart_ = true;
+}
+
+void CalculixSolverWrapper::output_step() {
+  if (!save_results_) return;
+  const std::filesystem::path directory = file("results");
+  std::filesystem::create_directories(directory);
+  for (const char* extension : {".frd", ".dat"}) {
+    const std::filesystem::path source = file(std::string(kJob) + extension);
+    if (std::filesystem::exists(source))
+      std::filesystem::copy_file(source, directory / fmt::format("step_{:05d}{}", step_, extension),
+                                 std::filesystem::copy_options::overwrite_existing);
+  }
+}
+
+void CalculixSolverWrapper::fail(const std::string& message) const {
+  throw SolverError(name_, message);
+}
+
+std::string CalculixSolverWrapper::position() const {
+  return fmt::format("time step {}, coupling iteration {}", step_, iteration_);
+}
+
+}  // namespace cocopp

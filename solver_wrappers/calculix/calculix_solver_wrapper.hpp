@@ -1,0 +1,115 @@
+#pragma once
+// CalculixSolverWrapper (case-file type `calculix`): a CalculiX (ccx) structural model behind
+// the coupler. The user gives a normal ccx input deck with one step and names the interface:
+// an element-face surface (loads) and a node set (displacements). Every coupling iteration
+// writes the loads, runs ccx (a new process per iteration; ccx has no way to take new loads
+// while it runs) and reads the interface displacements from the .dat file.
+//
+// State reset (docs/solver-wrappers-calculix.md): every coupling iteration of time step n+1
+// starts from the converged state of step n, so plastic strain, hardening and geometry of
+// unconverged iterations never leak into the result. Two ways, chosen by `state_reset`:
+// - restart: each iteration reads the restart file of step n's converged iteration and runs
+//   one step; finalize_step() keeps the last iteration's restart file as the new base. Fast,
+//   but Debian's ccx 2.20 drops the material state variables (equivalent plastic strain,
+//   back stress) on *RESTART, READ: exact only for models without history variables.
+// - replay: each iteration runs all committed steps again with their converged loads, then the
+//   new step: a continuous ccx run by construction, exact for every material; the ccx time of
+//   an iteration grows with the step number.
+// `auto` (the default) replays when the deck has a history-dependent material (*PLASTIC,
+// *CREEP, *CYCLIC HARDENING, *USER MATERIAL, *DEPVAR) and restarts otherwise.
+//
+// Runs in the coupler process (no protocol): ccx is started through ChildProcess, like every
+// solver process, with the same timeout, log and clean-up rules.
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "solver_wrappers/calculix/input_deck.hpp"
+#include "solver_wrappers/calculix/interface_loads.hpp"
+#include "solver_wrappers/solver_wrapper.hpp"
+
+namespace cocopp {
+
+class CalculixSolverWrapper : public SolverWrapper {
+ public:
+  /// Names of the files the wrapper writes in the working directory.
+  static constexpr const char* kJob = "cocopp_iteration";  ///< ccx job of each iteration
+  static constexpr const char* kModelFile = "cocopp_model.inp";
+  static constexpr const char* kLoadsFile = "cocopp_loads.inp";
+  static constexpr const char* kConvergedRestart = "cocopp_converged.rout";
+
+  enum class StateReset { kRestart, kReplay };
+
+  /// Time spent per coupling iteration, for the overhead benchmark.
+  struct Timing {
+    double ccx_seconds = 0.0;      ///< ccx's run (process start to exit)
+    double wrapper_seconds = 0.0;  ///< writing loads and deck, copying restart, reading .dat
+  };
+
+  CalculixSolverWrapper(const Settings& settings, const RunSettings& run);
+  ~CalculixSolverWrapper() override;
+
+  const std::string& name() const override { return name_; }
+  std::string describe() const override;
+  void check() const override;
+
+  void initialize() override;
+  const Interface& input_interface() const override { return input_interface_; }
+  const Interface& output_interface() const override { return output_interface_; }
+  void initialize_step(int step, double time) override;
+  const Interface& solve(const Interface& input) override;
+  void finalize_step() override;
+  void output_step() override;
+  void finalize() override {}
+
+  const Timing& last_timing() const { return last_timing_; }
+  const std::filesystem::path& working_directory() const { return working_directory_; }
+  StateReset state_reset() const { return state_reset_; }
+
+ private:
+  void read_deck();
+  void build_interfaces();
+  void write_iteration_deck() const;
+  void write_step(std::ofstream& out, const std::string& loads_file, bool print) const;
+  void write_loads(const Interface& input) const;
+  void run_ccx();
+  [[noreturn]] void fail(const std::string& message) const;
+  std::string position() const;
+  std::filesystem::path file(const std::string& name) const { return working_directory_ / name; }
+
+  // From the case file.
+  std::string name_;
+  std::filesystem::path working_directory_;
+  std::string input_file_;
+  std::string surface_name_;
+  std::string node_set_name_;
+  std::string executable_;
+  std::vector<std::string> input_variables_;
+  int threads_ = 1;
+  double timeout_ = 600.0;
+  bool save_results_ = true;
+  std::filesystem::path log_file_;
+  std::string state_reset_key_;
+  std::string working_directory_where_, input_file_where_, executable_where_;
+  RunSettings run_;
+
+  // From the deck.
+  std::unique_ptr<calculix::InputDeck> deck_;
+  std::unique_ptr<calculix::InterfaceLoads> loads_;
+  std::vector<std::int64_t> interface_nodes_;
+  std::filesystem::path ccx_path_;
+  StateReset state_reset_ = StateReset::kRestart;
+
+  // While running.
+  int step_ = 0;
+  int iteration_ = 0;
+  bool has_converged_restart_ = false;        ///< restart: a committed step exists to restart from
+  std::vector<std::string> committed_loads_;  ///< replay: each committed step's loads file
+  Interface input_interface_;
+  Interface output_interface_;
+  Timing last_timing_;
+};
+
+}  // namespace cocopp

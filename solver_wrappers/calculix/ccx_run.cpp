@@ -1,0 +1,91 @@
+#include "solver_wrappers/calculix/ccx_run.hpp"
+
+#include <chrono>
+#include <fstream>
+#include <sstream>
+
+#include "solver_wrappers/process/child_process.hpp"
+
+namespace cocopp::calculix {
+
+namespace {
+
+constexpr std::size_t kLogTailLines = 20;
+constexpr double kStopGraceSeconds = 1.0;
+constexpr std::size_t kMaxErrorMessages = 10;
+
+std::string read_text(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+}  // namespace
+
+std::string error_messages(const std::string& log_text) {
+  std::istringstream lines(log_text);
+  std::string line;
+  std::string messages;
+  std::size_t count = 0;
+  bool inside = false;
+  while (std::getline(lines, line)) {
+    const bool blank = line.find_first_not_of(" \t\r") == std::string::npos;
+    if (line.find("*ERROR") != std::string::npos) {
+      // "*ERROR in calinput: at least one fatal error" only says that there were errors.
+      if (line.find("*ERROR in calinput") != std::string::npos) continue;
+      inside = ++count <= kMaxErrorMessages;
+    } else if (blank) {
+      inside = false;
+    }
+    if (inside) messages += line + "\n";
+  }
+  if (count > kMaxErrorMessages)
+    messages += "(" + std::to_string(count - kMaxErrorMessages) + " more *ERROR messages)\n";
+  return messages;
+}
+
+CcxRunResult run_ccx(const CcxRunOptions& options) {
+  ChildOptions child_options;
+  child_options.command = {options.executable.string(), "-i", options.job};
+  child_options.working_directory = options.working_directory;
+  const std::string threads = std::to_string(options.threads);
+  // ccx's equation solver (SPOOLES/PaStiX) and its element loops read these.
+  child_options.environment = {{"OMP_NUM_THREADS", threads},
+                               {"CCX_NPROC_EQUATION_SOLVER", threads},
+                               {"CCX_NPROC_RESULTS", threads},
+                               {"CCX_NPROC_STIFFNESS", threads}};
+  child_options.log_file = options.log_file;
+  child_options.truncate_log = true;  // the log holds the last run: the one to explain
+
+  const auto start = std::chrono::steady_clock::now();
+  ChildProcess ccx(child_options);
+  const bool exited = ccx.wait_for_exit(options.timeout);
+  if (!exited) ccx.stop(kStopGraceSeconds);
+  CcxRunResult result;
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.exit_code = ccx.exit_code();
+  result.exit_description = ccx.describe_exit();
+  if (!exited) {
+    result.status = CcxRunResult::Status::kTimedOut;
+    result.details = read_last_lines(options.log_file, kLogTailLines);
+    return result;
+  }
+  if (result.exit_code == 0) return result;
+  const std::string log = read_text(options.log_file);
+  if (log.find("increment size smaller than minimum") != std::string::npos) {
+    result.status = CcxRunResult::Status::kNotConverged;
+    result.details = read_last_lines(options.log_file, kLogTailLines);
+    return result;
+  }
+  result.details = error_messages(log);
+  if (!result.details.empty() && result.exit_code >= 0) {
+    result.status = CcxRunResult::Status::kDeckError;
+    return result;
+  }
+  result.status = CcxRunResult::Status::kFailed;
+  result.details = read_last_lines(options.log_file, kLogTailLines);
+  return result;
+}
+
+}  // namespace cocopp::calculix

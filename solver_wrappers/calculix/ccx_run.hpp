@@ -1,0 +1,38 @@
+#pragma once
+// One run of ccx (`ccx -i <job>`) as a child process (ChildProcess: own process group, output
+// in a log file, stopped when the coupler stops), with a timeout, and a failure explained:
+// exit code 201 after "increment size smaller than minimum" is non-convergence; *ERROR lines
+// are a rejected deck (quoted); anything else (a crash, another exit code) quotes the log tail.
+#include <filesystem>
+#include <string>
+
+namespace cocopp::calculix {
+
+struct CcxRunOptions {
+  std::filesystem::path executable;
+  std::filesystem::path working_directory;
+  std::string job;  ///< reads <job>.inp
+  std::filesystem::path log_file;
+  int threads = 1;
+  double timeout = 600.0;  ///< seconds
+};
+
+struct CcxRunResult {
+  enum class Status { kSuccess, kNotConverged, kDeckError, kFailed, kTimedOut };
+  Status status = Status::kSuccess;
+  int exit_code = -1;
+  std::string exit_description;  ///< "exited with code 201", "killed by signal 11 (...)"
+  /// For kNotConverged and kFailed: the log's last lines; for kDeckError: ccx's *ERROR
+  /// messages.
+  std::string details;
+  double seconds = 0.0;  ///< wall-clock time of the run
+};
+
+/// Run ccx and wait for it; never throws for a failure of ccx itself (see the status), but
+/// throws std::runtime_error if it cannot be started.
+CcxRunResult run_ccx(const CcxRunOptions& options);
+
+/// ccx's *ERROR messages in a log: each from its "*ERROR" line to the next blank line.
+std::string error_messages(const std::string& log_text);
+
+}  // namespace cocopp::calculix

@@ -1,0 +1,26 @@
+#pragma once
+// Faces of CalculiX elements: which nodes a face "S<k>" has, and its geometry from the
+// isoparametric shape functions: area, centroid and the consistent nodal weights
+// w_i = integral of N_i over the face, so that a uniform traction t on the face is the nodal
+// forces w_i t exactly (for quadratic faces the corner weights are negative, as they must be).
+// Faces of plane elements (CPE*, CPS*) are edges times the section thickness.
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "solver_wrappers/calculix/input_deck.hpp"
+
+namespace cocopp::calculix {
+
+struct FaceGeometry {
+  std::vector<std::int64_t> nodes;
+  Eigen::VectorXd weights;  ///< integral of each node's shape function over the face
+  double area = 0.0;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+};
+
+/// Throws DeckError for element types or face numbers the wrapper does not support (the
+/// message lists the supported ones; axisymmetric CAX* elements are refused with the reason).
+FaceGeometry face_geometry(const InputDeck& deck, const ElementFace& face);
+
+}  // namespace cocopp::calculix

@@ -1,0 +1,66 @@
+#include "solver_wrappers/calculix/interface_loads.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <stdexcept>
+
+namespace cocopp::calculix {
+
+std::string ccx_number(double value) {
+  // ccx reads a number from the first 20 characters of its field and fails on (or, worse,
+  // silently truncates) longer text: 14 significant digits fit, far more than the .dat file's
+  // 7 that come back. Values below 1e-99 would need a third exponent digit.
+  if (std::abs(value) < 1e-99) return "0.";
+  return fmt::format("{:.13E}", value);
+}
+
+InterfaceLoads::InterfaceLoads(const InputDeck& deck, std::vector<ElementFace> faces)
+    : deck_(deck), faces_(std::move(faces)) {
+  for (const auto& face : faces_) geometry_.push_back(face_geometry(deck, face));
+  // Edges of plane elements have 2 or 3 nodes; faces of solids 4 or 8.
+  plane_ = !geometry_.empty() && geometry_.front().nodes.size() <= 3;
+}
+
+std::map<std::int64_t, Eigen::Vector3d> InterfaceLoads::nodal_forces(
+    const RowMatrix& traction) const {
+  std::map<std::int64_t, Eigen::Vector3d> forces;
+  for (std::size_t f = 0; f < geometry_.size(); ++f) {
+    const auto& face = geometry_[f];
+    const Eigen::Vector3d t = traction.row(static_cast<Eigen::Index>(f)).transpose();
+    for (std::size_t i = 0; i < face.nodes.size(); ++i) {
+      auto [entry, inserted] = forces.try_emplace(face.nodes[i], Eigen::Vector3d::Zero());
+      (void)inserted;
+      entry->second += face.weights[static_cast<Eigen::Index>(i)] * t;
+    }
+  }
+  return forces;
+}
+
+void InterfaceLoads::write(const std::filesystem::path& file, const Eigen::VectorXd& pressure,
+                           const RowMatrix& traction) const {
+  std::ofstream out(file);
+  if (!out) throw std::runtime_error("cannot write the loads file " + file.string());
+  out << "** Interface loads of this coupling iteration, written by cocopp\n";
+  if (pressure.size() > 0) {
+    out << "*DLOAD\n";
+    for (std::size_t f = 0; f < faces_.size(); ++f)
+      out << fmt::format("{}, P{}, {}\n", faces_[f].element, faces_[f].face,
+                         ccx_number(pressure[static_cast<Eigen::Index>(f)]));
+  }
+  if (traction.size() > 0) {
+    out << "*CLOAD\n";
+    for (const auto& [node, global_force] : nodal_forces(traction)) {
+      const NodalTransform* transform = deck_.transform(node);
+      const Eigen::Vector3d force =
+          transform ? Eigen::Vector3d(transform->axes_at(deck_.node(node)) * global_force)
+                    : global_force;
+      for (int dof = 0; dof < (plane_ ? 2 : 3); ++dof)
+        out << fmt::format("{}, {}, {}\n", node, dof + 1, ccx_number(force[dof]));
+    }
+  }
+  if (!out.flush()) throw std::runtime_error("cannot write the loads file " + file.string());
+}
+
+}  // namespace cocopp::calculix

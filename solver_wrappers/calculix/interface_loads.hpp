@@ -1,0 +1,49 @@
+#pragma once
+// The loads of one coupling iteration on the interface faces, as ccx cards:
+// - pressure: *DLOAD "element, P<face>, p" per face (ccx integrates it; positive pushes into
+//   the body, the coupler's convention too);
+// - traction: ccx has no distributed traction load, so a uniform traction t on each face
+//   becomes the consistent nodal forces w_i t (w_i = integral of N_i over the face, see
+//   element_faces.hpp), summed over the faces, as *CLOAD. The faces are those of the actual
+//   model (a 1° sector's faces span 1°), so no per-radian or per-segment factor enters. Nodes
+//   with a *TRANSFORM take their *CLOAD in the local system: the forces are rotated into it.
+// Every face and node is written each time (zeros too), with OP=MOD (the default): a new
+// step's values replace the previous step's, and the user's own loads are left alone.
+#include <Eigen/Core>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "coupler/data/interface.hpp"
+#include "solver_wrappers/calculix/element_faces.hpp"
+#include "solver_wrappers/calculix/input_deck.hpp"
+
+namespace cocopp::calculix {
+
+/// A number as ccx can read it: at most 20 characters, 14 significant digits.
+std::string ccx_number(double value);
+
+class InterfaceLoads {
+ public:
+  InterfaceLoads(const InputDeck& deck, std::vector<ElementFace> faces);
+
+  const std::vector<ElementFace>& faces() const { return faces_; }
+  const std::vector<FaceGeometry>& geometry() const { return geometry_; }
+
+  /// Nodal forces (global x, y, z) of a uniform traction per face (faces x 3).
+  std::map<std::int64_t, Eigen::Vector3d> nodal_forces(const RowMatrix& traction) const;
+
+  /// Write the cards: `pressure` has one value per face (or is empty: no *DLOAD), `traction`
+  /// one row per face (or is empty: no *CLOAD).
+  void write(const std::filesystem::path& file, const Eigen::VectorXd& pressure,
+             const RowMatrix& traction) const;
+
+ private:
+  const InputDeck& deck_;
+  std::vector<ElementFace> faces_;
+  std::vector<FaceGeometry> geometry_;
+  bool plane_ = false;  ///< faces of plane elements: no forces out of plane
+};
+
+}  // namespace cocopp::calculix

@@ -1,0 +1,313 @@
+// The calculix wrapper running ccx on structures with known answers: Lamé's thick-walled
+// cylinder, the onset of yielding, the state reset within and across time steps, equality with
+// one continuous ccx run, the totals of the loads it writes, and ccx's own failures.
+// Needs ccx (Debian package calculix-ccx); CMake builds this test only when ccx is found.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+#include "solver_wrappers/calculix/ccx_run.hpp"
+#include "solver_wrappers/process/child_process.hpp"
+#include "tests/unit/calculix/calculix_test_helpers.hpp"
+
+namespace cocopp {
+namespace {
+
+using testing::CalculixCase;
+using testing::dat_blocks;
+using testing::kPi;
+using testing::last_total_force;
+using testing::SectorCylinder;
+
+constexpr double kYield = 250e6;
+/// The .dat file prints 7 significant digits.
+constexpr double kDatPrecision = 1e-6;
+
+double max_abs(const Eigen::VectorXd& values) {
+  return values.cwiseAbs().maxCoeff();
+}
+
+TEST(CalculixCcx, ThickWalledCylinderMatchesLame) {
+  CalculixCase test;
+  SectorCylinder cylinder;
+  test.create(cylinder.deck());
+  test.wrapper().initialize();
+  test.wrapper().initialize_step(1, 1.0);
+  const double p = 100e6;
+  const RowMatrix u = test.solve(p);
+  const Eigen::VectorXd radial = test.radial(u);
+  const double expected = cylinder.lame_radial_displacement(p, cylinder.ri);
+  // Quadratic elements represent the Lamé field (a r + b / r) to far below 1e-4 with 8 elements.
+  for (Eigen::Index i = 0; i < radial.size(); ++i)
+    EXPECT_NEAR(radial[i], expected, 1e-4 * expected) << "node " << test.nodes().ids[i];
+  // Axisymmetric: no hoop displacement (the sector's constraint, given in the local system).
+  const double hoop_tolerance = 1e-6 * expected;
+  for (Eigen::Index i = 0; i < u.rows(); ++i) {
+    const Eigen::Vector3d x = test.nodes().coordinates.row(i).transpose();
+    const Eigen::Vector3d e_theta = Eigen::Vector3d(-x.y(), x.x(), 0.0).normalized();
+    EXPECT_NEAR(u.row(i).dot(e_theta.transpose()), 0.0, hoop_tolerance);
+    EXPECT_NEAR(u(i, 2), 0.0, hoop_tolerance);  // plane strain
+  }
+}
+
+/// Permanent radial displacement at the bore after loading to `p` and unloading, relative to
+/// the displacement under `p`.
+double permanent_set(double p) {
+  CalculixCase test;
+  SectorCylinder cylinder;
+  cylinder.radial = 16;
+  cylinder.grading = 4.0;
+  cylinder.yield_stress = kYield;
+  test.create(cylinder.deck());
+  test.wrapper().initialize();
+  test.wrapper().initialize_step(1, 1.0);
+  const double loaded = max_abs(test.radial(test.solve(p)));
+  test.wrapper().finalize_step();
+  test.wrapper().initialize_step(2, 2.0);
+  const double unloaded = max_abs(test.radial(test.solve(0.0)));
+  return unloaded / loaded;
+}
+
+TEST(CalculixCcx, YieldingStartsAtTheAnalyticPressure) {
+  SectorCylinder cylinder;
+  cylinder.yield_stress = kYield;
+  const double p_yield = cylinder.yield_onset_pressure();
+  const double below = permanent_set(0.97 * p_yield);
+  const double above = permanent_set(1.03 * p_yield);
+  // Below: elastic, unloading returns to zero (to round-off); above: a permanent set (8e-4 of
+  // the loaded displacement at 1.03 p_y with 16 graded elements).
+  EXPECT_LT(below, 10 * kDatPrecision);
+  EXPECT_GT(above, 1e-4);
+}
+
+/// The largest difference between two displacement fields, relative to the largest value.
+double relative_difference(const RowMatrix& a, const RowMatrix& b) {
+  return (a - b).cwiseAbs().maxCoeff() / std::max(a.cwiseAbs().maxCoeff(), 1e-300);
+}
+
+class Repeatability : public ::testing::TestWithParam<bool> {};
+
+// Within one time step: p, then 2p, then p again gives the first answer again, also when 2p
+// makes the material flow; and so does the next time step, which starts from the committed p.
+TEST_P(Repeatability, LoadPThen2PThenPGivesTheFirstAnswer) {
+  const bool plastic_at_2p = GetParam();
+  CalculixCase test;
+  SectorCylinder cylinder;
+  cylinder.yield_stress = kYield;
+  test.create(cylinder.deck());
+  test.wrapper().initialize();
+  const double p = (plastic_at_2p ? 0.75 : 0.4) * cylinder.yield_onset_pressure();
+  test.wrapper().initialize_step(1, 1.0);
+  const RowMatrix first = test.solve(p);
+  const RowMatrix doubled = test.solve(2 * p);
+  const RowMatrix again = test.solve(p);
+  EXPECT_LE(relative_difference(again, first), kDatPrecision);
+  // 2p flows plastically (the response is no longer proportional) exactly when it should.
+  const double nonlinearity = relative_difference(doubled, 2 * first);
+  if (plastic_at_2p) {
+    EXPECT_GT(nonlinearity, 1e-3);
+  } else {
+    EXPECT_LT(nonlinearity, 10 * kDatPrecision);
+  }
+  test.wrapper().finalize_step();
+  test.wrapper().initialize_step(2, 2.0);
+  test.solve(2 * p);
+  EXPECT_LE(relative_difference(test.solve(p), first), kDatPrecision);
+}
+
+INSTANTIATE_TEST_SUITE_P(CalculixCcx, Repeatability, ::testing::Values(false, true),
+                         [](const auto& info) { return info.param ? "Plastic" : "Elastic"; });
+
+/// Displacements of INNERN at the end of each step of one continuous ccx run with these
+/// pressures, one step each.
+std::vector<RowMatrix> continuous_run(const SectorCylinder& cylinder,
+                                      const std::vector<double>& pressures,
+                                      const std::filesystem::path& directory,
+                                      const std::vector<std::int64_t>& nodes) {
+  std::filesystem::create_directories(directory);
+  std::string deck = cylinder.deck();
+  const std::string step = deck.substr(deck.find("*STEP"));
+  deck = deck.substr(0, deck.find("*STEP"));
+  for (const double p : pressures) {
+    std::string this_step = step;
+    this_step.insert(
+        this_step.find("*END STEP"),
+        "*DLOAD\nINNER, P, " + std::to_string(p) + "\n*NODE PRINT, NSET=INNERN, GLOBAL=YES\nU\n");
+    deck += this_step;
+  }
+  testing::write_text(directory / "continuous.inp", deck);
+  calculix::CcxRunOptions options{find_executable("ccx", directory), directory, "continuous",
+                                  directory / "continuous.log"};
+  const auto result = calculix::run_ccx(options);
+  EXPECT_EQ(result.status, calculix::CcxRunResult::Status::kSuccess) << result.details;
+  const auto blocks = dat_blocks(directory / "continuous.dat", "displacements", "INNERN");
+  std::vector<RowMatrix> ends;
+  for (std::size_t n = 1; n <= pressures.size(); ++n) {
+    const auto block = blocks.find(static_cast<double>(n));  // total time at the end of step n
+    EXPECT_NE(block, blocks.end()) << "no displacements at the end of step " << n;
+    if (block == blocks.end()) return {};
+    std::map<std::int64_t, Eigen::RowVector3d> by_node;
+    for (const auto& row : block->second)
+      by_node[static_cast<std::int64_t>(row.at(0))] = {row.at(1), row.at(2), row.at(3)};
+    RowMatrix end(static_cast<Eigen::Index>(nodes.size()), 3);
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      end.row(static_cast<Eigen::Index>(i)) = by_node.at(nodes[i]);
+    ends.push_back(end);
+  }
+  return ends;
+}
+
+struct ResetCase {
+  std::string name;
+  std::string state_reset;
+  bool plastic;
+};
+
+class ResetEqualsContinuousRun : public ::testing::TestWithParam<ResetCase> {};
+
+// Three coupled time steps, each with an unconverged iteration at a load far off before the
+// converged one, end where one continuous ccx run over the same three steps ends.
+TEST_P(ResetEqualsContinuousRun, EveryStepEndsWhereTheContinuousRunDoes) {
+  CalculixCase test;
+  SectorCylinder cylinder;
+  cylinder.nlgeom = true;
+  cylinder.yield_stress = GetParam().plastic ? kYield : 0.0;
+  const double p_y = SectorCylinder{cylinder}.yield_onset_pressure();
+  const double scale = GetParam().plastic ? p_y : 2 * kYield;  // elastic: any load
+  const std::vector<double> pressures = {0.6 * scale, 1.4 * scale, 0.3 * scale};
+  const double far_off = 1.7 * scale;
+  test.create(cylinder.deck(), "state_reset: " + GetParam().state_reset + "\n");
+  test.wrapper().initialize();
+  std::vector<RowMatrix> coupled;
+  for (std::size_t n = 0; n < pressures.size(); ++n) {
+    test.wrapper().initialize_step(static_cast<int>(n + 1), n + 1.0);
+    test.solve(far_off);
+    coupled.push_back(test.solve(pressures[n]));
+    test.wrapper().finalize_step();
+  }
+  const auto continuous =
+      continuous_run(cylinder, pressures, test.path("continuous"), test.nodes().ids);
+  ASSERT_EQ(continuous.size(), pressures.size());
+  for (std::size_t n = 0; n < pressures.size(); ++n)
+    EXPECT_LE(relative_difference(coupled[n], continuous[n]), kDatPrecision) << "step " << n + 1;
+}
+
+INSTANTIATE_TEST_SUITE_P(CalculixCcx, ResetEqualsContinuousRun,
+                         ::testing::Values(ResetCase{"RestartFilesElasticNlgeom", "restart", false},
+                                           ResetCase{"ReplayPlasticNlgeom", "auto", true}),
+                         [](const auto& info) { return info.param.name; });
+
+// The totals of the loads the wrapper writes: a uniform axial shear traction and a uniform
+// pressure on the bore of a 1 degree sector give reactions equal to traction x area and
+// pressure x projected area of that sector (a per-radian or per-segment factor would show).
+TEST(CalculixCcx, LoadsOnASectorHaveTheAnalyticTotals) {
+  CalculixCase test;
+  SectorCylinder cylinder;
+  cylinder.plane_strain = false;  // axially supported at the outer edge of z = 0 only
+  cylinder.extra_step_cards =
+      "*NODE PRINT, NSET=SUPPORT, TOTALS=ONLY, GLOBAL=YES\nRF\n"
+      "*NODE PRINT, NSET=INNERN, GLOBAL=NO\nRF\n";
+  test.create(cylinder.deck());
+  test.wrapper().initialize();
+  test.wrapper().initialize_step(1, 1.0);
+  const double p = 10e6, tau = 3e6;
+  test.solve(p, Eigen::Vector3d(0, 0, tau));
+  const auto dat = test.path("wall/cocopp_iteration.dat");
+  const double axial = tau * 2 * kPi * cylinder.ri * cylinder.length / 360.0;
+  const double radial = p * 2 * kPi * cylinder.ri * cylinder.length / 360.0;
+  // ccx's RF is each node's internal force: summed over the support, the axial reaction; at
+  // the bore's nodes, in their cylindrical systems (ccx marks those values "L"), the radial
+  // components are the applied radial forces (the reactions there are hoop forces only).
+  EXPECT_NEAR(-last_total_force(dat, "SUPPORT").z(), axial, 1e-6 * axial);
+  const auto bore = dat_blocks(dat, "forces", "INNERN");
+  ASSERT_FALSE(bore.empty());
+  double radial_total = 0.0;
+  for (const auto& row : bore.rbegin()->second) radial_total += row.at(1);
+  // The pressure's nodal forces are normal to the bore, radial to within the cosine of the
+  // angle between a face's normal and a node's radius (at most 0.25 degree: 1e-5).
+  EXPECT_NEAR(radial_total, radial, 2e-5 * radial);
+}
+
+// A traction equal to the pressure's force per area (p times the outward radial direction on
+// the bore) must deform the sector like the pressure does: the nodal forces are rotated into
+// the nodes' cylindrical *TRANSFORM systems (the sector lies at 45 degrees, where a missing
+// rotation would put half of each force on the constrained hoop direction).
+TEST(CalculixCcx, TractionIsRotatedIntoTheNodalSystems) {
+  CalculixCase test;
+  SectorCylinder cylinder;
+  test.create(cylinder.deck());
+  test.wrapper().initialize();
+  test.wrapper().initialize_step(1, 1.0);
+  const double p = 50e6;
+  const Eigen::VectorXd by_pressure = test.radial(test.solve(p));
+  Interface input = test.loads(0.0);
+  const auto& faces = *input.parts().front().model_part;
+  auto traction = input.values(faces.name, "traction");
+  for (Eigen::Index f = 0; f < traction.rows(); ++f) {
+    const Eigen::Vector3d centroid = faces.coordinates.row(f).transpose();
+    traction.row(f) = p * Eigen::Vector3d(centroid.x(), centroid.y(), 0).normalized().transpose();
+  }
+  const Interface& output = test.wrapper().solve(input);
+  const Eigen::VectorXd by_traction = test.radial(output.values(test.nodes().name, "displacement"));
+  // Each face's traction direction is its centroid's: 0.25 degree off at its edges (6e-5).
+  for (Eigen::Index i = 0; i < by_pressure.size(); ++i)
+    EXPECT_NEAR(by_traction[i], by_pressure[i], 2e-4 * max_abs(by_pressure));
+}
+
+// Plane strain (CPE8, thickness 0.5): the strip compressed by a uniform pressure shortens by
+// p Ly (1 - nu^2) / E, and the reactions equal pressure and shear traction times the loaded
+// length times the thickness.
+TEST(CalculixCcx, PlaneStrainStripHasTheAnalyticResponseAndTotals) {
+  CalculixCase test;
+  testing::PlaneStrainStrip strip;
+  strip.extra_step_cards = "*NODE PRINT, NSET=BOTTOM, TOTALS=ONLY\nRF\n";
+  test.create(strip.deck(), "", "TOP", "TOPN");
+  test.wrapper().initialize();
+  test.wrapper().initialize_step(1, 1.0);
+  const auto dat = test.path("wall/cocopp_iteration.dat");
+  const double p = 20e6, tau = 5e6;
+  const RowMatrix u = test.solve(p);
+  const double shortening = p * strip.ly * (1 - strip.poisson * strip.poisson) / strip.young;
+  for (Eigen::Index i = 0; i < u.rows(); ++i) EXPECT_NEAR(u(i, 1), -shortening, 1e-6 * shortening);
+  EXPECT_NEAR(last_total_force(dat, "BOTTOM").y(), p * strip.lx * strip.thickness,
+              1e-6 * p * strip.lx * strip.thickness);
+  test.solve(0.0, Eigen::Vector3d(tau, 0, 0));
+  EXPECT_NEAR(-last_total_force(dat, "BOTTOM").x(), tau * strip.lx * strip.thickness,
+              1e-6 * tau * strip.lx * strip.thickness);
+}
+
+TEST(CalculixCcx, DeckErrorQuotesCcx) {
+  CalculixCase test;
+  SectorCylinder cylinder;
+  cylinder.extra_step_cards = "*BOUNDARY\nNOSUCHSET, 1, 1\n";
+  test.create(cylinder.deck());
+  test.wrapper().initialize();
+  test.wrapper().initialize_step(1, 1.0);
+  const std::string message = testing::solver_error_of([&] { test.solve(1e6); });
+  EXPECT_CONTAINS(message, "ccx rejected the input deck at time step 1, coupling iteration 1");
+  EXPECT_CONTAINS(message, "cocopp_iteration.inp (built from wall.inp)");
+  EXPECT_CONTAINS(message, "*ERROR");
+  EXPECT_CONTAINS(message, "NOSUCHSET");
+}
+
+TEST(CalculixCcx, NonConvergenceNamesTheTimeStepAndIteration) {
+  CalculixCase test;
+  SectorCylinder cylinder;
+  cylinder.yield_stress = kYield;
+  test.create(cylinder.deck());
+  test.wrapper().initialize();
+  test.wrapper().initialize_step(1, 1.0);
+  test.solve(0.5 * cylinder.yield_onset_pressure());
+  test.wrapper().finalize_step();
+  test.wrapper().initialize_step(2, 2.0);
+  test.solve(0.5 * cylinder.yield_onset_pressure());
+  // Twice the yield stress is beyond the collapse pressure (2 / sqrt(3) ln(ro / ri) sigma_y).
+  const std::string message = testing::solver_error_of([&] { test.solve(2 * kYield); });
+  EXPECT_CONTAINS(message, "ccx did not converge at time step 2, coupling iteration 2");
+  EXPECT_CONTAINS(message, "exited with code 201");
+  EXPECT_CONTAINS(message, "increment size smaller than minimum");
+}
+
+}  // namespace
+}  // namespace cocopp
