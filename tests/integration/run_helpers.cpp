@@ -1,5 +1,6 @@
 #include "run_helpers.hpp"
 
+#include <gtest/gtest.h>
 #include <hdf5.h>
 #include <sys/wait.h>
 
@@ -75,6 +76,14 @@ std::string read_text(const fs::path& file) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+void edit(const std::filesystem::path& file, const std::string& from, const std::string& to) {
+  std::string text = read_text(file);
+  const auto at = text.find(from);
+  ASSERT_NE(at, std::string::npos) << from << " not in " << file;
+  text.replace(at, from.size(), to);
+  write_text(file, text);
 }
 
 }  // namespace cocopp::testing

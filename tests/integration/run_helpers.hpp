@@ -23,5 +23,7 @@ nlohmann::json read_json(const std::filesystem::path& file);
 std::vector<double> read_dataset(const std::filesystem::path& file, const std::string& name);
 void write_text(const std::filesystem::path& file, const std::string& text);
 std::string read_text(const std::filesystem::path& file);
+/// Replace the first occurrence of `from` in a file (a failed test if it is not there).
+void edit(const std::filesystem::path& file, const std::string& from, const std::string& to);
 
 }  // namespace cocopp::testing

@@ -13,14 +13,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-void edit(const fs::path& file, const std::string& from, const std::string& to) {
-  std::string text = read_text(file);
-  const auto at = text.find(from);
-  ASSERT_NE(at, std::string::npos) << from;
-  text.replace(at, from.size(), to);
-  write_text(file, text);
-}
-
 /// The largest radial (y) wall displacement at time step `step` (1-based) of a results file.
 double peak_radial(const fs::path& results, int step, std::size_t points) {
   const auto values = read_dataset(results, "x/wall/displacement");

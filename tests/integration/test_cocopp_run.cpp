@@ -8,19 +8,6 @@
 using namespace cocopp::testing;
 namespace fs = std::filesystem;
 
-namespace {
-
-/// Replace the first occurrence of `from` in a file.
-void edit(const fs::path& file, const std::string& from, const std::string& to) {
-  std::string text = read_text(file);
-  const auto at = text.find(from);
-  ASSERT_NE(at, std::string::npos) << from;
-  text.replace(at, from.size(), to);
-  write_text(file, text);
-}
-
-}  // namespace
-
 TEST(CocoppRun, FlowStructureTubeConvergesWithIqnIls) {
   const fs::path dir = copy_example("tube/flow_structure", "fs_iqni");
   const CommandResult run = run_cocopp("run " + (dir / "case.yaml").string());

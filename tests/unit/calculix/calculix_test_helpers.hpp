@@ -14,6 +14,7 @@
 #include "solver_wrappers/solver_error.hpp"
 #include "solver_wrappers/solver_wrapper.hpp"
 #include "tests/support/calculix_models.hpp"
+#include "tests/support/error_message.hpp"
 #include "tests/unit/protocol/test_helpers.hpp"
 
 namespace cocopp::testing {
@@ -85,27 +86,6 @@ class CalculixCase {
   std::unique_ptr<Settings> settings_;
   std::unique_ptr<SolverWrapper> wrapper_;
 };
-
-/// The message of the SolverError `action` throws (fails the test if it throws none).
-inline std::string solver_error_of(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const SolverError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no SolverError";
-  return "";
-}
-
-inline std::string case_error_of(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const CaseError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no CaseError";
-  return "";
-}
 
 /// Every "<quantity> ... for set <set> and time <t>" block of a .dat file: time -> rows of
 /// numbers (node id first for nodal values; the totals line alone for totals).

@@ -9,7 +9,10 @@
 
 #include "solver_wrappers/calculix/ccx_run.hpp"
 #include "solver_wrappers/process/child_process.hpp"
+#include "tests/support/error_message.hpp"
 #include "tests/unit/calculix/calculix_test_helpers.hpp"
+
+using cocopp::testing::error_message;
 
 namespace cocopp {
 namespace {
@@ -284,7 +287,7 @@ TEST(CalculixCcx, DeckErrorQuotesCcx) {
   test.create(cylinder.deck());
   test.wrapper().initialize();
   test.wrapper().initialize_step(1, 1.0);
-  const std::string message = testing::solver_error_of([&] { test.solve(1e6); });
+  const std::string message = testing::error_message<SolverError>([&] { test.solve(1e6); });
   EXPECT_CONTAINS(message, "ccx rejected the input deck at time step 1, coupling iteration 1");
   EXPECT_CONTAINS(message, "cocopp_iteration.inp (built from wall.inp)");
   EXPECT_CONTAINS(message, "*ERROR");
@@ -303,7 +306,7 @@ TEST(CalculixCcx, NonConvergenceNamesTheTimeStepAndIteration) {
   test.wrapper().initialize_step(2, 2.0);
   test.solve(0.5 * cylinder.yield_onset_pressure());
   // Twice the yield stress is beyond the collapse pressure (2 / sqrt(3) ln(ro / ri) sigma_y).
-  const std::string message = testing::solver_error_of([&] { test.solve(2 * kYield); });
+  const std::string message = testing::error_message<SolverError>([&] { test.solve(2 * kYield); });
   EXPECT_CONTAINS(message, "ccx did not converge at time step 2, coupling iteration 2");
   EXPECT_CONTAINS(message, "exited with code 201");
   EXPECT_CONTAINS(message, "increment size smaller than minimum");

@@ -11,7 +11,10 @@
 #include "solver_wrappers/calculix/element_faces.hpp"
 #include "solver_wrappers/calculix/input_deck.hpp"
 #include "solver_wrappers/calculix/interface_loads.hpp"
+#include "tests/support/error_message.hpp"
 #include "tests/unit/calculix/calculix_test_helpers.hpp"
+
+using cocopp::testing::error_message;
 
 namespace cocopp {
 namespace {
@@ -24,16 +27,6 @@ using testing::read_text;
 using testing::SectorCylinder;
 using testing::TemporaryDirectory;
 using testing::write_text;
-
-std::string deck_error_of(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const DeckError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no DeckError";
-  return "";
-}
 
 /// Two C3D20 elements side by side (x in [0, 2], y, z in [0, 1]) from a generated sector-free
 /// layout: nodes on a 5 x 3 x 3 grid of half-element spacing.
@@ -96,18 +89,21 @@ TEST_F(DeckTest, ReadsMeshSetsSurfacesIncludesAndTheStep) {
 }
 
 TEST_F(DeckTest, ErrorsNameTheFileAndLine) {
-  EXPECT_CONTAINS(deck_error_of([&] { read(two_hexes() + kStep + kStep); }), "a second *STEP");
-  EXPECT_CONTAINS(deck_error_of([&] { read(two_hexes() + "*RESTART, READ\n" + kStep); }),
+  EXPECT_CONTAINS(error_message<DeckError>([&] { read(two_hexes() + kStep + kStep); }),
+                  "a second *STEP");
+  EXPECT_CONTAINS(error_message<DeckError>([&] { read(two_hexes() + "*RESTART, READ\n" + kStep); }),
                   "*RESTART: the calculix wrapper writes and reads the restart files");
-  EXPECT_CONTAINS(deck_error_of([&] { read("*INCLUDE, INPUT=missing.inp\n" + kStep); }),
+  EXPECT_CONTAINS(error_message<DeckError>([&] { read("*INCLUDE, INPUT=missing.inp\n" + kStep); }),
                   "deck.inp:1: cannot read");
-  EXPECT_CONTAINS(deck_error_of([&] { read(two_hexes("*NSET, NSET=A\nNOSUCH\n") + kStep); }),
-                  "deck.inp:40: *NSET: set NOSUCH is not defined");
-  EXPECT_CONTAINS(deck_error_of([&] { read(two_hexes()); }), "no *STEP");
-  EXPECT_CONTAINS(deck_error_of([&] { read("*NODE\n1, 0, zero, 0\n" + kStep); }),
+  EXPECT_CONTAINS(
+      error_message<DeckError>([&] { read(two_hexes("*NSET, NSET=A\nNOSUCH\n") + kStep); }),
+      "deck.inp:40: *NSET: set NOSUCH is not defined");
+  EXPECT_CONTAINS(error_message<DeckError>([&] { read(two_hexes()); }), "no *STEP");
+  EXPECT_CONTAINS(error_message<DeckError>([&] { read("*NODE\n1, 0, zero, 0\n" + kStep); }),
                   "deck.inp:2: 'zero' is not a number");
-  EXPECT_CONTAINS(deck_error_of([&] { read("*ELEMENT, TYPE=C3D8\n1, 1, 2, 3\n" + kStep); }),
-                  "has 3 nodes (8 expected)");
+  EXPECT_CONTAINS(
+      error_message<DeckError>([&] { read("*ELEMENT, TYPE=C3D8\n1, 1, 2, 3\n" + kStep); }),
+      "has 3 nodes (8 expected)");
 }
 
 TEST_F(DeckTest, QuadraticFaceWeightsAreTheConsistentNodalShares) {
@@ -145,7 +141,9 @@ TEST_F(DeckTest, AxisymmetricElementsAreRefusedWithTheReason) {
   const InputDeck deck = read(
       "*NODE\n1, 1, 0\n2, 2, 0\n3, 2, 1\n4, 1, 1\n*ELEMENT, TYPE=CAX4, ELSET=E\n1, 1, 2, 3, 4\n" +
       kStep);
-  const std::string message = deck_error_of([&] { calculix::face_geometry(deck, {1, 4}); });
+  const std::string message = error_message<DeckError>([&] {
+    calculix::face_geometry(deck, {1, 4});
+  });
   EXPECT_CONTAINS(message, "crashes when it restarts an axisymmetric model");
   EXPECT_CONTAINS(message, "C3D20R");
 }
@@ -239,7 +237,7 @@ class CalculixWithoutCcx : public ::testing::Test {
 
 TEST_F(CalculixWithoutCcx, MissingCcxSaysHowToInstallIt) {
   test_.create(cylinder_.deck(), "executable: no-such-ccx\n");
-  const std::string message = testing::case_error_of([&] { test_.wrapper().check(); });
+  const std::string message = testing::error_message<CaseError>([&] { test_.wrapper().check(); });
   EXPECT_CONTAINS(message, "case.yaml");
   EXPECT_CONTAINS(message, "no-such-ccx");
   EXPECT_CONTAINS(message, "install the Debian package calculix-ccx");
@@ -249,7 +247,7 @@ TEST_F(CalculixWithoutCcx, CrashIsReportedWithSignalAndPosition) {
   test_.create(cylinder_.deck(), fake_ccx("echo reading the deck\nkill -SEGV $$"));
   test_.wrapper().initialize();
   test_.wrapper().initialize_step(1, 1.0);
-  const std::string message = testing::solver_error_of([&] { test_.solve(1e6); });
+  const std::string message = testing::error_message<SolverError>([&] { test_.solve(1e6); });
   EXPECT_CONTAINS(message, "ccx killed by signal 11");
   EXPECT_CONTAINS(message, "time step 1, coupling iteration 1");
   EXPECT_CONTAINS(message, "reading the deck");
@@ -260,7 +258,7 @@ TEST_F(CalculixWithoutCcx, HangIsStoppedAfterTheTimeout) {
   test_.wrapper().initialize();
   test_.wrapper().initialize_step(1, 1.0);
   const auto start = std::chrono::steady_clock::now();
-  const std::string message = testing::solver_error_of([&] { test_.solve(1e6); });
+  const std::string message = testing::error_message<SolverError>([&] { test_.solve(1e6); });
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
   EXPECT_CONTAINS(message, "ccx did not finish within 0.3 s at time step 1, coupling iteration 1");
 }
@@ -269,16 +267,16 @@ TEST_F(CalculixWithoutCcx, MissingResultsAreReported) {
   test_.create(cylinder_.deck(), fake_ccx("exit 0"));
   test_.wrapper().initialize();
   test_.wrapper().initialize_step(1, 1.0);
-  EXPECT_CONTAINS(testing::solver_error_of([&] { test_.solve(1e6); }),
+  EXPECT_CONTAINS(testing::error_message<SolverError>([&] { test_.solve(1e6); }),
                   "cannot read ccx's results file");
 }
 
 TEST_F(CalculixWithoutCcx, CaseKeysAreChecked) {
-  EXPECT_CONTAINS(
-      testing::case_error_of([&] { test_.create(cylinder_.deck(), "input_variables: [force]\n"); }),
-      "the loads are pressure and traction");
+  EXPECT_CONTAINS(testing::error_message<CaseError>(
+                      [&] { test_.create(cylinder_.deck(), "input_variables: [force]\n"); }),
+                  "the loads are pressure and traction");
   test_.create(cylinder_.deck(), fake_ccx("exit 0"), "NOSUCH");
-  EXPECT_CONTAINS(testing::case_error_of([&] { test_.wrapper().initialize(); }),
+  EXPECT_CONTAINS(testing::error_message<CaseError>([&] { test_.wrapper().initialize(); }),
                   "no element-face surface NOSUCH");
 }
 
@@ -287,7 +285,7 @@ TEST_F(CalculixWithoutCcx, DynamicStepMustSpanTheCouplingTimeStep) {
   deck.replace(deck.find("*STATIC\n0.25, 1.0"), 17, "*DYNAMIC\n0.25, 1.0");
   CalculixCase test(0.5);
   test.create(deck, "executable: /bin/true\n");
-  EXPECT_CONTAINS(testing::case_error_of([&] { test.wrapper().initialize(); }),
+  EXPECT_CONTAINS(testing::error_message<CaseError>([&] { test.wrapper().initialize(); }),
                   "the *DYNAMIC step's time period is 1, the coupling time step delta_t is 0.5");
 }
 

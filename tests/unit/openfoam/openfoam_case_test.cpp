@@ -5,7 +5,10 @@
 #include <gtest/gtest.h>
 
 #include "solver_wrappers/process/process_solver_wrapper.hpp"
+#include "tests/support/error_message.hpp"
 #include "tests/unit/protocol/test_helpers.hpp"
+
+using cocopp::testing::error_message;
 
 namespace cocopp::openfoam {
 namespace {
@@ -15,17 +18,6 @@ using testing::write_text;
 
 #define EXPECT_CONTAINS(text, part) \
   EXPECT_NE(std::string(text).find(part), std::string::npos) << "in: " << (text)
-
-template <class Action>
-std::string case_error_of(Action&& action) {
-  try {
-    action();
-  } catch (const CaseError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no CaseError";
-  return "";
-}
 
 constexpr const char* kHeader =
     R"(/*--------------------------------*- C++ -*----------------------------------*\
@@ -66,19 +58,20 @@ patches         (inlet "outlet" wall);
 TEST(FoamDictionary, ErrorsNameTheFileAndLine) {
   TemporaryDirectory directory;
   const auto file = directory / "controlDict";
-  EXPECT_CONTAINS(case_error_of([&] { FoamDictionary::read(file); }),
+  EXPECT_CONTAINS(error_message<CaseError>([&] { FoamDictionary::read(file); }),
                   file.string() + ": cannot read");
   write_text(file, "deltaT abc;\n");
-  EXPECT_CONTAINS(case_error_of([&] { FoamDictionary::read(file).number("deltaT"); }),
+  EXPECT_CONTAINS(error_message<CaseError>([&] { FoamDictionary::read(file).number("deltaT"); }),
                   file.string() + ":1: 'deltaT' must be a number, not 'abc'");
   write_text(file, "a 1;\nfunctions\n{\n  x 2;\n");
-  EXPECT_CONTAINS(case_error_of([&] { FoamDictionary::read(file); }),
+  EXPECT_CONTAINS(error_message<CaseError>([&] { FoamDictionary::read(file); }),
                   file.string() + ":3: '{' is never closed");
   write_text(file, "a 1;\nendTime 2\n");
-  EXPECT_CONTAINS(case_error_of([&] { FoamDictionary::read(file); }),
+  EXPECT_CONTAINS(error_message<CaseError>([&] { FoamDictionary::read(file); }),
                   file.string() + ":2: entry 'endTime' does not end with ';'");
   write_text(file, "/* never closed\n");
-  EXPECT_CONTAINS(case_error_of([&] { FoamDictionary::read(file); }), "unterminated comment");
+  EXPECT_CONTAINS(error_message<CaseError>([&] { FoamDictionary::read(file); }),
+                  "unterminated comment");
 }
 
 TEST(FoamBoundary, ListsThePatchesInOrder) {
@@ -139,58 +132,58 @@ TEST_F(CaseCheckTest, AcceptsACoupledCase) {
 }
 
 TEST_F(CaseCheckTest, TheTimeStepMustBeTheCouplers) {
-  EXPECT_CONTAINS(case_error_of([&] { check(0.002).run(); }),
+  EXPECT_CONTAINS(error_message<CaseError>([&] { check(0.002).run(); }),
                   file("system/controlDict") +
                       ":11: solver 'fluid': deltaT 0.001 differs from the coupler's time step "
                       "delta_t 0.002");
   write("system/controlDict", "deltaT 0.001;\nadjustTimeStep yes;\n");
-  EXPECT_CONTAINS(case_error_of([&] { check().run(); }),
+  EXPECT_CONTAINS(error_message<CaseError>([&] { check().run(); }),
                   file("system/controlDict") + ":12: solver 'fluid': adjustTimeStep yes");
   write("system/controlDict", "endTime 1;\n");
-  EXPECT_CONTAINS(case_error_of([&] { check().run(); }),
+  EXPECT_CONTAINS(error_message<CaseError>([&] { check().run(); }),
                   file("system/controlDict") + ": the entry 'deltaT' is missing");
 }
 
 TEST_F(CaseCheckTest, TheMeshMustMoveWithAMotionSolver) {
   write("constant/dynamicMeshDict", "dynamicFvMesh staticFvMesh;\n");
   EXPECT_CONTAINS(
-      case_error_of([&] { check().run(); }),
+      error_message<CaseError>([&] { check().run(); }),
       file("constant/dynamicMeshDict") + ":11: solver 'fluid': dynamicFvMesh is staticFvMesh");
   std::filesystem::remove(directory_ / "constant/dynamicMeshDict");
-  EXPECT_CONTAINS(case_error_of([&] { check().run(); }),
+  EXPECT_CONTAINS(error_message<CaseError>([&] { check().run(); }),
                   file("constant/dynamicMeshDict") + ": cannot read the file");
 }
 
 TEST_F(CaseCheckTest, TheInterfacePatchesMustBeInTheMesh) {
   CaseCheck misspelt = check();
   misspelt.interface_patches = {"wal"};
-  EXPECT_CONTAINS(case_error_of([&] { misspelt.run(); }),
+  EXPECT_CONTAINS(error_message<CaseError>([&] { misspelt.run(); }),
                   file("constant/polyMesh/boundary") +
                       ": solver 'fluid': interface patch 'wal' is not in the mesh (its patches: "
                       "inlet, wall); did you mean 'wall'?");
   std::filesystem::remove(directory_ / "constant/polyMesh/boundary");
-  EXPECT_CONTAINS(case_error_of([&] { check().run(); }), "the case has no mesh");
+  EXPECT_CONTAINS(error_message<CaseError>([&] { check().run(); }), "the case has no mesh");
 }
 
 TEST_F(CaseCheckTest, TheDensityMustBeGiven) {
   write("constant/transportProperties", "transportModel Newtonian;\nnu 1e-6;\n");
   EXPECT_CONTAINS(
-      case_error_of([&] { check().run(); }),
+      error_message<CaseError>([&] { check().run(); }),
       file("constant/transportProperties") + ": solver 'fluid': the fluid density rho is missing");
 }
 
 TEST_F(CaseCheckTest, AParallelRunNeedsAGeometricDecompositionIntoAsManyParts) {
   CaseCheck parallel = check();
   parallel.cores = 2;
-  EXPECT_CONTAINS(case_error_of([&] { parallel.run(); }),
+  EXPECT_CONTAINS(error_message<CaseError>([&] { parallel.run(); }),
                   file("system/decomposeParDict") + ": cannot read the file");
   write("system/decomposeParDict", "numberOfSubdomains 4;\nmethod simple;\n");
   EXPECT_CONTAINS(
-      case_error_of([&] { parallel.run(); }),
+      error_message<CaseError>([&] { parallel.run(); }),
       file("system/decomposeParDict") +
           ":11: solver 'fluid': numberOfSubdomains 4 differs from the solver's cores 2");
   write("system/decomposeParDict", "numberOfSubdomains 2;\nmethod scotch;\n");
-  EXPECT_CONTAINS(case_error_of([&] { parallel.run(); }),
+  EXPECT_CONTAINS(error_message<CaseError>([&] { parallel.run(); }),
                   file("system/decomposeParDict") + ":12: solver 'fluid': method scotch");
   write("system/decomposeParDict", "numberOfSubdomains 2;\nmethod hierarchical;\n");
   EXPECT_NO_THROW(parallel.run());
@@ -236,8 +229,9 @@ TEST(OpenFoamWrapper, ReadsItsKeysAndStartsCocoppPimpleFoamOnThePatches) {
 
   const Settings missing = Settings::load_string(
       "type: openfoam\nworking_directory: tube\nboundary_names: [wall, wall]\n", "case.yaml");
-  EXPECT_CONTAINS(case_error_of([&] { SolverWrapperRegistry::instance().create(missing, run); }),
-                  "patch 'wall' is listed twice");
+  EXPECT_CONTAINS(
+      error_message<CaseError>([&] { SolverWrapperRegistry::instance().create(missing, run); }),
+      "patch 'wall' is listed twice");
 }
 
 }  // namespace

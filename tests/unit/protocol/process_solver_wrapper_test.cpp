@@ -10,11 +10,13 @@
 
 #include "solver_wrappers/protocol/pipe_transport.hpp"
 #include "solver_wrappers/solver_error.hpp"
+#include "tests/support/error_message.hpp"
 #include "tests/unit/protocol/test_helpers.hpp"
 
 namespace cocopp {
 namespace {
 
+using testing::error_message;
 using testing::process_alive;
 using testing::read_text;
 using testing::TemporaryDirectory;
@@ -43,16 +45,6 @@ std::string solver_error_of(Action&& action) {
     return e.what();
   }
   ADD_FAILURE() << "no SolverError";
-  return "";
-}
-
-std::string case_error_of(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const CaseError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no CaseError";
   return "";
 }
 
@@ -273,16 +265,16 @@ class ProcessSolverWrapperSetupTest : public ::testing::Test {
 
 TEST_F(ProcessSolverWrapperSetupTest, AMissingExecutableIsNamedByCheckAndInitialize) {
   auto wrapper = create_flow("command: [./no_such_solver, input.txt]\n");
-  std::string message = case_error_of([&] { wrapper->check(); });
+  std::string message = error_message<CaseError>([&] { wrapper->check(); });
   EXPECT_CONTAINS(message, "case.yaml:4:");
   EXPECT_CONTAINS(message, "solver 'flow': executable " +
                                (directory_ / "flow/no_such_solver").string() + " does not exist");
-  message = case_error_of([&] { wrapper->initialize(); });
+  message = error_message<CaseError>([&] { wrapper->initialize(); });
   EXPECT_CONTAINS(message, "no_such_solver");
   EXPECT_NO_THROW(wrapper->finalize());
 
   wrapper = create_flow("command: [no_such_solver_on_path]\n");
-  EXPECT_CONTAINS(case_error_of([&] { wrapper->check(); }),
+  EXPECT_CONTAINS(error_message<CaseError>([&] { wrapper->check(); }),
                   "executable 'no_such_solver_on_path' not found in " +
                       (directory_ / "flow").string() + " or on PATH");
 }
@@ -290,7 +282,7 @@ TEST_F(ProcessSolverWrapperSetupTest, AMissingExecutableIsNamedByCheckAndInitial
 TEST_F(ProcessSolverWrapperSetupTest, AMissingWorkingDirectoryIsReported) {
   auto wrapper =
       create("type: process\nname: flow\nworking_directory: nowhere\ncommand: [sh]\n", run_);
-  EXPECT_CONTAINS(case_error_of([&] { wrapper->check(); }),
+  EXPECT_CONTAINS(error_message<CaseError>([&] { wrapper->check(); }),
                   "working directory " + (directory_ / "nowhere").string() + " does not exist");
 }
 
@@ -330,16 +322,18 @@ TEST_F(ProcessSolverWrapperSetupTest, DefaultsAndPaths) {
 }
 
 TEST_F(ProcessSolverWrapperSetupTest, SettingsAreValidatedWhenBuilt) {
-  EXPECT_CONTAINS(case_error_of([&] { create_flow("command: [./s]\ntransport: pipes\n"); }),
-                  "did you mean 'pipe'");
-  EXPECT_CONTAINS(case_error_of([&] { create_flow("command: [./s]\ntimeout: 0\n"); }),
+  EXPECT_CONTAINS(
+      error_message<CaseError>([&] { create_flow("command: [./s]\ntransport: pipes\n"); }),
+      "did you mean 'pipe'");
+  EXPECT_CONTAINS(error_message<CaseError>([&] { create_flow("command: [./s]\ntimeout: 0\n"); }),
                   "'timeout': must be > 0");
-  EXPECT_CONTAINS(case_error_of([&] { create_flow(""); }), "missing required key 'command'");
-  EXPECT_CONTAINS(case_error_of([&] { create_flow("command: []\n"); }),
+  EXPECT_CONTAINS(error_message<CaseError>([&] { create_flow(""); }),
+                  "missing required key 'command'");
+  EXPECT_CONTAINS(error_message<CaseError>([&] { create_flow("command: []\n"); }),
                   "must start with the executable");
-  EXPECT_CONTAINS(case_error_of([&] { create_flow("command: [./s]\ntimout: 5\n"); }),
+  EXPECT_CONTAINS(error_message<CaseError>([&] { create_flow("command: [./s]\ntimout: 5\n"); }),
                   "unknown key 'timout'; did you mean 'timeout'");
-  EXPECT_CONTAINS(case_error_of([&] { create_flow("command: [./s]\ninput_file: x\n"); }),
+  EXPECT_CONTAINS(error_message<CaseError>([&] { create_flow("command: [./s]\ninput_file: x\n"); }),
                   "unknown key 'input_file'");
 }
 
@@ -365,7 +359,7 @@ TEST_F(ProcessSolverWrapperSetupTest, BuiltinTubeSolversDefaultToTheBinDirectory
   EXPECT_EQ(command_of("type: tube_flow\nworking_directory: flow\ncommand: [./mine]\n"),
             (std::vector<std::string>{"./mine"}));
   EXPECT_CONTAINS(
-      case_error_of([&] {
+      error_message<CaseError>([&] {
         create("type: tube_flow\nworking_directory: flow\ncommand: [a]\ninput_file: b\n", run_);
       }),
       "give either 'command' or 'input_file'");
@@ -373,12 +367,12 @@ TEST_F(ProcessSolverWrapperSetupTest, BuiltinTubeSolversDefaultToTheBinDirectory
   auto flow = create("type: tube_flow\nworking_directory: flow\n", run_);
   EXPECT_EQ(flow->name(), "tube_flow");
   EXPECT_CONTAINS(
-      case_error_of([&] { flow->check(); }),
+      error_message<CaseError>([&] { flow->check(); }),
       "input file " + (directory_ / "flow/tube_flow.yaml").string() + " does not exist");
   write_text(directory_ / "flow/tube_flow.yaml", "");
   EXPECT_NO_THROW(flow->check());
   auto structure = create("type: tube_structure\nworking_directory: flow\n", run_);
-  EXPECT_CONTAINS(case_error_of([&] { structure->check(); }), "cocopp-tube-structure");
+  EXPECT_CONTAINS(error_message<CaseError>([&] { structure->check(); }), "cocopp-tube-structure");
 
   if (saved != nullptr)
     ::setenv("COCOPP_BIN_DIR", saved_value.c_str(), 1);
