@@ -106,7 +106,9 @@ class Run {
       algorithm_time_ += record.coupler_time;
       if (!options.quiet) print_progress(record, last);
       print_warnings(record);
-      if (case_.state_interval > 0 && step % case_.state_interval == 0) save_state(step);
+      // The last step is saved once, after the loop.
+      if (case_.state_interval > 0 && step < last && step % case_.state_interval == 0)
+        save_state(step);
     }
     save_state(last);
   }
