@@ -70,6 +70,7 @@ class CalculixSolverWrapper : public SolverWrapper {
 
  private:
   void read_deck();
+  void check_dynamic_elements() const;
   void build_interfaces();
   void write_iteration_deck() const;
   void write_step(std::ofstream& out, const std::string& loads_file, bool print) const;
@@ -90,6 +91,7 @@ class CalculixSolverWrapper : public SolverWrapper {
   int threads_ = 1;
   double timeout_ = 600.0;
   bool save_results_ = true;
+  bool allow_reduced_integration_ = false;
   std::filesystem::path log_file_;
   std::string state_reset_key_;
   std::string working_directory_where_, input_file_where_, executable_where_;

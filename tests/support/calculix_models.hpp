@@ -35,7 +35,11 @@ struct SectorCylinder {
   bool nlgeom = false;
   /// true: u_z = 0 at every node (plane strain); false: u_z = 0 on the SUPPORT edge only.
   bool plane_strain = true;
-  std::string increments = "0.25, 1.0";  ///< the *STATIC data line
+  std::string element_type = "C3D20R";
+  double density = 0.0;                  ///< > 0: *DENSITY (for dynamic steps)
+  std::string step_options;              ///< added to the *STEP line, e.g. ", AMPLITUDE=RAMP"
+  std::string procedure = "*STATIC";     ///< e.g. "*DYNAMIC, DIRECT, ALPHA=0"
+  std::string increments = "0.25, 1.0";  ///< the procedure's data line
   std::string extra_step_cards;          ///< e.g. *NODE PRINT cards for reactions
 
   int elements() const { return radial * axial; }
@@ -58,7 +62,8 @@ struct SectorCylinder {
     const auto exists = [](int i, int j, int k) { return (i % 2) + (j % 2) + (k % 2) <= 1; };
     std::ostringstream out;
     out.precision(13);  // ccx reads numbers from 20-character fields
-    out << "** Thick-walled cylinder: " << angle_degrees << " degree sector of C3D20R\n";
+    out << "** Thick-walled cylinder: " << angle_degrees << " degree sector of " << element_type
+        << "\n";
     out << "*NODE, NSET=NALL\n";
     for (int k = 0; k < nk; ++k)
       for (int j = 0; j < nj; ++j)
@@ -74,7 +79,7 @@ struct SectorCylinder {
                                      {2, 0, 2}, {2, 2, 2}, {0, 2, 2}, {1, 0, 0}, {2, 1, 0},
                                      {1, 2, 0}, {0, 1, 0}, {1, 0, 2}, {2, 1, 2}, {1, 2, 2},
                                      {0, 1, 2}, {0, 0, 1}, {2, 0, 1}, {2, 2, 1}, {0, 2, 1}};
-    out << "*ELEMENT, TYPE=C3D20R, ELSET=EALL\n";
+    out << "*ELEMENT, TYPE=" << element_type << ", ELSET=EALL\n";
     std::vector<int> inner_elements;
     for (int q = 0; q < axial; ++q)
       for (int m = 0; m < radial; ++m) {
@@ -98,9 +103,12 @@ struct SectorCylinder {
     out << "*TRANSFORM, NSET=NALL, TYPE=C\n0., 0., 0., 0., 0., 1.\n";
     out << "*MATERIAL, NAME=STEEL\n*ELASTIC\n" << young << ", " << poisson << "\n";
     if (yield_stress > 0) out << "*PLASTIC\n" << yield_stress << ", 0.\n";
+    if (density > 0) out << "*DENSITY\n" << density << "\n";
     out << "*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL\n";
     out << "*BOUNDARY\nNALL, 2, 2\n" << (plane_strain ? "NALL" : "SUPPORT") << ", 3, 3\n";
-    out << "*STEP" << (nlgeom ? ", NLGEOM" : "") << ", INC=1000\n*STATIC\n" << increments << "\n";
+    out << "*STEP" << (nlgeom ? ", NLGEOM" : "") << ", INC=1000" << step_options << "\n"
+        << procedure << "\n"
+        << increments << "\n";
     out << extra_step_cards;
     out << "*END STEP\n";
     return out.str();

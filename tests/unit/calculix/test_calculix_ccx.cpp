@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <map>
+#include <sstream>
 
 #include "solver_wrappers/calculix/ccx_run.hpp"
 #include "solver_wrappers/process/child_process.hpp"
@@ -200,6 +202,87 @@ INSTANTIATE_TEST_SUITE_P(CalculixCcx, ResetEqualsContinuousRun,
                          ::testing::Values(ResetCase{"RestartFilesElasticNlgeom", "restart", false},
                                            ResetCase{"ReplayPlasticNlgeom", "auto", true}),
                          [](const auto& info) { return info.param.name; });
+
+/// Radial bore displacement at the end of each of `pressures.size()` increments of delta_t of
+/// one continuous dynamic ccx run: one step, the pressure piecewise linear in time through
+/// (0, 0), (delta_t, pressures[0]), (2 delta_t, pressures[1]), ...
+std::vector<double> continuous_dynamic_run(SectorCylinder cylinder,
+                                           const std::vector<double>& pressures, double delta_t,
+                                           const std::filesystem::path& directory,
+                                           std::int64_t node, const Eigen::Vector3d& at) {
+  const Eigen::Vector2d outward = at.head<2>().normalized();
+  std::filesystem::create_directories(directory);
+  std::ostringstream amplitude, step;
+  amplitude.precision(13);
+  amplitude << "*AMPLITUDE, NAME=LOADS\n0., 0.\n";
+  for (std::size_t k = 0; k < pressures.size(); ++k)
+    amplitude << (k + 1.0) * delta_t << ", " << pressures[k] << "\n";
+  step.precision(13);
+  step << delta_t << ", " << delta_t * static_cast<double>(pressures.size()) << ", " << delta_t
+       << ", " << delta_t;
+  cylinder.step_options = "";
+  cylinder.increments = step.str();
+  cylinder.extra_step_cards =
+      "*DLOAD, AMPLITUDE=LOADS\nINNER, P, 1.\n*NODE PRINT, NSET=INNERN, GLOBAL=YES\nU\n";
+  std::string deck = cylinder.deck();
+  deck.insert(deck.find("*STEP"), amplitude.str());
+  testing::write_text(directory / "continuous.inp", deck);
+  calculix::CcxRunOptions options{find_executable("ccx", directory), directory, "continuous",
+                                  directory / "continuous.log"};
+  const auto result = calculix::run_ccx(options);
+  EXPECT_EQ(result.status, calculix::CcxRunResult::Status::kSuccess) << result.details;
+  std::vector<double> radial;
+  for (const auto& [time, rows] :
+       dat_blocks(directory / "continuous.dat", "displacements", "INNERN"))
+    for (const auto& row : rows)
+      if (static_cast<std::int64_t>(row.at(0)) == node)
+        radial.push_back(row.at(1) * outward.x() + row.at(2) * outward.y());
+  return radial;
+}
+
+// A dynamic structure coupled over 40 time steps (one ccx step each, restarted from the last
+// converged step after a far-off iteration) follows one continuous ccx run of 40 increments
+// under the same load history, within 2 % of the peak (measured 0.97 %). The two differ only
+// where ccx starts a step: it solves for the acceleration there with a little stiffness added
+// to the mass (nonlingeo.c), which feeds an undamped sawtooth (ALPHA=0; ALPHA=-0.05 is 6.8 %
+// off, since the step start ignores alpha). With C3D20R elements the same series grows without
+// bound (the wrapper refuses them in dynamic decks, test_calculix_deck.cpp).
+TEST(CalculixCcx, DynamicTimeStepsFollowOneContinuousRun) {
+  SectorCylinder cylinder;
+  cylinder.radial = 4;
+  cylinder.element_type = "C3D20";
+  cylinder.density = 7850.0;
+  cylinder.step_options = ", AMPLITUDE=RAMP";
+  cylinder.procedure = "*DYNAMIC, DIRECT, ALPHA=0";
+  const double delta_t = 2e-6;  // about 9 steps per period of the breathing mode
+  cylinder.increments = "2e-06, 2e-06";
+  std::vector<double> pressures;
+  for (int k = 1; k <= 40; ++k)
+    pressures.push_back(1e8 * (0.5 + std::sin(0.4 * k) + 0.3 * std::cos(1.3 * k)));
+  CalculixCase test(delta_t);
+  test.create(cylinder.deck());
+  test.wrapper().initialize();
+  const std::int64_t node = test.nodes().ids.front();
+  std::vector<double> coupled;
+  for (std::size_t n = 0; n < pressures.size(); ++n) {
+    test.wrapper().initialize_step(static_cast<int>(n + 1), (n + 1.0) * delta_t);
+    test.solve(-2 * pressures[n]);
+    coupled.push_back(test.radial(test.solve(pressures[n]))(0));
+    test.wrapper().finalize_step();
+  }
+  const Eigen::Vector3d at = test.nodes().coordinates.row(0).transpose();
+  const auto continuous =
+      continuous_dynamic_run(cylinder, pressures, delta_t, test.path("continuous"), node, at);
+  ASSERT_EQ(continuous.size(), pressures.size());
+  double peak = 0.0, difference = 0.0;
+  for (std::size_t n = 0; n < pressures.size(); ++n) {
+    peak = std::max(peak, std::abs(continuous[n]));
+    difference = std::max(difference, std::abs(coupled[n] - continuous[n]));
+  }
+  EXPECT_LE(difference, 2e-2 * peak) << "peak " << peak;
+  RecordProperty("max_difference_over_peak", std::to_string(difference / peak));
+  std::printf("largest difference: %.2e of the peak %.3e m\n", difference / peak, peak);
+}
 
 // The totals of the loads the wrapper writes: a uniform axial shear traction and a uniform
 // pressure on the bore of a 1 degree sector give reactions equal to traction x area and

@@ -289,5 +289,31 @@ TEST_F(CalculixWithoutCcx, DynamicStepMustSpanTheCouplingTimeStep) {
                   "the *DYNAMIC step's time period is 1, the coupling time step delta_t is 0.5");
 }
 
+// ccx restarts its integrator at every step with full integration: reduced-integration elements
+// in a dynamic deck would grow without bound over the coupling time steps (one step each).
+TEST_F(CalculixWithoutCcx, DynamicDeckRefusesReducedIntegrationElements) {
+  SectorCylinder cylinder;
+  cylinder.procedure = "*DYNAMIC, DIRECT, ALPHA=0";
+  cylinder.increments = "0.5, 0.5";
+  cylinder.density = 7850.0;
+  CalculixCase test(0.5);
+  test.create(cylinder.deck(), "executable: /bin/true\n");
+  const std::string message =
+      testing::error_message<CaseError>([&] { test.wrapper().initialize(); });
+  EXPECT_CONTAINS(message, "wall.inp:");
+  EXPECT_CONTAINS(message, "element 1 is a C3D20R (reduced integration) in a *DYNAMIC deck");
+  EXPECT_CONTAINS(message, "Use the fully integrated element (C3D20)");
+  EXPECT_CONTAINS(message, "allow_reduced_integration: true");
+
+  test.create(cylinder.deck(), "executable: /bin/true\nallow_reduced_integration: true\n");
+  EXPECT_NO_THROW(test.wrapper().initialize());
+  cylinder.element_type = "C3D20";
+  test.create(cylinder.deck(), "executable: /bin/true\n");
+  EXPECT_NO_THROW(test.wrapper().initialize());
+  // Static steps integrate consistently: reduced integration is fine there.
+  test.create(SectorCylinder{}.deck(), "executable: /bin/true\n");
+  EXPECT_NO_THROW(test.wrapper().initialize());
+}
+
 }  // namespace
 }  // namespace cocopp
