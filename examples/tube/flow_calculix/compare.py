@@ -1,10 +1,14 @@
 #!/usr/bin/python3
-"""Compare the tube wall of this example (CalculiX sector) with examples/tube/flow_structure
-(the built-in tube structure): radial wall displacement at three points over time, and along
-the tube at three times, over the 35 steps of this example. Both runs must be done first:
+"""Compare the tube wall of this example (CalculiX sector) with the 1D tube structure: radial
+wall displacement at three points over time, and along the tube at three times.
 
-  build/bin/cocopp run examples/tube/flow_structure/case.yaml
+Two references: equivalent_tube/ (the tube structure with the thick wall's Lame stiffness and
+the trapezoidal rule ccx uses; the one that should agree) and examples/tube/flow_structure (the
+thin-ring tube structure with backward Euler). The runs must be done first:
+
   build/bin/cocopp run examples/tube/flow_calculix/case.yaml
+  build/bin/cocopp run examples/tube/flow_calculix/equivalent_tube/case.yaml
+  build/bin/cocopp run examples/tube/flow_structure/case.yaml
   /usr/bin/python3 examples/tube/flow_calculix/compare.py [-o docs/tube-flow-calculix.png]
 """
 import argparse
@@ -18,9 +22,11 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-RUNS = {"CalculiX sector (flow_calculix)": os.path.join(HERE, "results", "case.h5"),
-        "tube structure (flow_structure)": os.path.join(HERE, "..", "flow_structure", "results",
-                                                        "case.h5")}
+RUNS = [("CalculiX sector", "-", os.path.join(HERE, "results", "case.h5")),
+        ("equivalent tube structure", "--",
+         os.path.join(HERE, "equivalent_tube", "results", "case.h5")),
+        ("thin-ring tube structure (flow_structure)", ":",
+         os.path.join(HERE, "..", "flow_structure", "results", "case.h5"))]
 
 
 def load(path):
@@ -35,35 +41,38 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("-o", "--output", default=os.path.join(HERE, "comparison.png"))
     arguments = parser.parse_args()
-    data = {label: load(path) for label, path in RUNS.items()}
-    steps = min(len(time) for time, _, _ in data.values())
-    data = {label: (time[:steps], z, radial[:steps]) for label, (time, z, radial) in data.items()}
-    figure, (history, profile) = plt.subplots(1, 2, figsize=(12, 4.5))
-    styles = ["-", "--"]
-    for (label, (time, z, radial)), style in zip(data.items(), styles):
+    data = [(label, style) + load(path) for label, style, path in RUNS]
+    steps = min(len(time) for _, _, time, _, _ in data)
+    figure, (history, profile) = plt.subplots(1, 2, figsize=(13, 5))
+    for label, style, time, z, radial in data:
+        time, radial = time[:steps], radial[:steps]
+        short = label.split(" (")[0]
         for position, colour in zip([-0.015, 0.0, 0.015], ["C0", "C1", "C2"]):
             i = int(np.argmin(np.abs(z - position)))
             history.plot(time * 1e3, radial[:, i] * 1e6, style, color=colour,
-                         label="%s, z = %.0f mm" % (label.split(" (")[0], z[i] * 1e3))
-        for step, colour in zip([10, 20, 35], ["C3", "C4", "C5"]):
-            row = int(np.flatnonzero(np.isclose(time, step * 1e-4))[0])
+                         label="%s, z = %.0f mm" % (short, z[i] * 1e3))
+        for step, colour in zip([20, 50, steps], ["C3", "C4", "C5"]):
+            row = step - 1
             profile.plot(z * 1e3, radial[row] * 1e6, style, color=colour,
-                         label="%s, t = %.1f ms" % (label.split(" (")[0], time[row] * 1e3))
+                         label="%s, t = %.1f ms" % (short, time[row] * 1e3))
     history.set_xlabel("t (ms)")
     history.set_ylabel("radial wall displacement (µm)")
-    history.legend(fontsize=7)
+    history.legend(fontsize=6)
     history.set_title("wall displacement over time")
     profile.set_xlabel("z (mm)")
     profile.set_ylabel("radial wall displacement (µm)")
-    profile.legend(fontsize=7)
-    profile.set_title("along the tube (solid: CalculiX, dashed: tube structure)")
+    profile.legend(fontsize=6)
+    profile.set_title("along the tube (solid: CalculiX, dashed: equivalent, dotted: thin ring)")
     figure.tight_layout()
     figure.savefig(arguments.output, dpi=110)
-    (_, _, a), (_, _, b) = data.values()
-    print("wrote %s; peak displacement: CalculiX %.3g m, tube structure %.3g m; "
-          "RMS difference / RMS tube structure: %.3f"
-          % (arguments.output, np.abs(a).max(), np.abs(b).max(),
-             np.sqrt(np.mean((a - b) ** 2) / np.mean(b ** 2))))
+    calculix = data[0][4][:steps]
+    print("wrote %s over %d steps; peak displacement of the CalculiX sector %.3g m"
+          % (arguments.output, steps, np.abs(calculix).max()))
+    for label, _, _, _, radial in data[1:]:
+        radial = radial[:steps]
+        print("  %s: peak %.3g m, RMS difference / RMS of it: %.3f"
+              % (label, np.abs(radial).max(),
+                 np.sqrt(np.mean((calculix - radial) ** 2) / np.mean(radial ** 2))))
 
 
 if __name__ == "__main__":
