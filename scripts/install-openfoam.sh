@@ -41,40 +41,11 @@ if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$source_version" ]; then
 fi
 
 start=$(date +%s)
-rm -rf "$tree" "$deps_dir/openfoam-src"
-mkdir -p "$deps_dir/openfoam-src"
 
-# 2. The source package, through a private apt configuration: the system's sources get a
-# deb-src twin in build-deps/ only, so the machine's apt set-up stays as it is.
-apt_dir=$deps_dir/apt
-rm -rf "$apt_dir"
-mkdir -p "$apt_dir/sources.list.d" "$apt_dir/lists/partial"
-for f in /etc/apt/sources.list.d/*.sources; do
-  [ -e "$f" ] || continue
-  grep -q 'debian.org' "$f" || continue
-  sed 's/^Types:.*/Types: deb-src/' "$f" >"$apt_dir/sources.list.d/$(basename "$f")"
-done
-for f in /etc/apt/sources.list /etc/apt/sources.list.d/*.list; do
-  [ -e "$f" ] || continue
-  grep -E '^deb .*debian.org' "$f" | sed 's/^deb /deb-src /' >>"$apt_dir/sources.list.d/debian-src.list" || true
-done
-private_apt=(apt-get -q -o Dir::Etc::SourceList=/dev/null
-  -o "Dir::Etc::SourceParts=$apt_dir/sources.list.d" -o "Dir::State::Lists=$apt_dir/lists"
-  -o Dir::Cache::pkgcache= -o Dir::Cache::srcpkgcache=)
-echo "install-openfoam: fetching the source package openfoam=$source_version"
-"${private_apt[@]}" update >"$apt_dir/update.log" 2>&1 || {
-  cat "$apt_dir/update.log"
-  echo "install-openfoam: apt-get update of the source index failed" >&2
-  exit 1
-}
-(cd "$deps_dir/openfoam-src" && "${private_apt[@]}" source "openfoam=$source_version" >../openfoam-source.log 2>&1) || {
-  tail -20 "$deps_dir/openfoam-source.log"
-  echo "install-openfoam: apt-get source openfoam=$source_version failed (log: $deps_dir/openfoam-source.log)" >&2
-  exit 1
-}
-unpacked=$(find "$deps_dir/openfoam-src" -mindepth 1 -maxdepth 1 -type d | head -1)
-mv "$unpacked" "$tree"
-rm -rf "$deps_dir/openfoam-src" "$apt_dir/lists"
+# 2. The source package (headers, wmake), outside the machine's apt set-up.
+# shellcheck source=scripts/lib/debian-source.sh
+source scripts/lib/debian-source.sh
+fetch_debian_source install-openfoam openfoam "$source_version" "$deps_dir" "$tree"
 
 # 3. wmake and the lnInclude header links. OpenFOAM's bashrc reads unset variables and
 # needs USER, so this runs in a subshell without `set -u`.
