@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Install the Debian 12 packages cocopp needs to build, test and plot, and the external solvers
-# the tests run: calculix-ccx (the CalculiX structural solver, /usr/bin/ccx) and OpenFOAM with
-# the headers cocoppPimpleFoam compiles against (scripts/install-openfoam.sh). Idempotent: does
-# nothing when everything is there already. Run as root (or with sudo).
+# the tests run: CalculiX (Debian's calculix-ccx and a ccx built from its source with cocopp's
+# restart patch, scripts/install-calculix.sh) and OpenFOAM with the headers cocoppPimpleFoam
+# compiles against (scripts/install-openfoam.sh). Idempotent: does nothing when everything is
+# there already. Run as root (or with sudo).
 set -euo pipefail
 
 packages=(
@@ -12,7 +13,6 @@ packages=(
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   python3-h5py python3-matplotlib python3-numpy python3-yaml
   clang-format
-  calculix-ccx
 )
 
 missing=()
@@ -28,6 +28,12 @@ else
   export DEBIAN_FRONTEND=noninteractive
   "${sudo_cmd[@]}" apt-get -o DPkg::Lock::Timeout=600 update -q
   "${sudo_cmd[@]}" apt-get -o DPkg::Lock::Timeout=600 install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+# CalculiX: Debian's ccx and cocopp's patched build of it (skip with COCOPP_WITHOUT_CALCULIX=1:
+# CMake then says that the CalculiX tests are disabled).
+if [ "${COCOPP_WITHOUT_CALCULIX:-0}" != 1 ]; then
+  "$(dirname "$0")/install-calculix.sh"
 fi
 
 # OpenFOAM and the headers cocoppPimpleFoam compiles against (skip with COCOPP_WITHOUT_OPENFOAM=1:

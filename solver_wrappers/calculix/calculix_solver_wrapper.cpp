@@ -31,6 +31,23 @@ void write_lines(std::ofstream& out, const std::vector<calculix::DeckLine>& line
   for (const auto& line : lines) out << line.text << "\n";
 }
 
+/// Whether results depend on the load path through material state variables.
+bool has_material_history(const calculix::InputDeck& deck) {
+  for (const char* keyword : {"PLASTIC", "CREEP", "CYCLIC HARDENING", "USER MATERIAL", "DEPVAR"})
+    if (deck.has_keyword(keyword)) return true;
+  return false;
+}
+
+/// ccx with cocopp's restart patch where scripts/install-calculix.sh built it, else the
+/// Debian package's ccx on PATH.
+std::string default_executable() {
+#ifdef COCOPP_PATCHED_CCX
+  std::error_code error;
+  if (std::filesystem::is_regular_file(COCOPP_PATCHED_CCX, error)) return COCOPP_PATCHED_CCX;
+#endif
+  return "ccx";
+}
+
 /// The first element that ccx integrates with reduced integration (2D, shell and beam elements
 /// are expanded to C3D8R or C3D20R), or null.
 const std::pair<const std::int64_t, calculix::Element>* reduced_integration_element(
@@ -59,7 +76,7 @@ CalculixSolverWrapper::CalculixSolverWrapper(const Settings& settings, const Run
                                     " is the wrapper's own job name: rename the deck");
   surface_name_ = settings.required<std::string>("interface_surface");
   node_set_name_ = settings.required<std::string>("interface_node_set");
-  executable_ = settings.get<std::string>("executable", "ccx");
+  executable_ = settings.get<std::string>("executable", default_executable());
   executable_where_ = settings.has("executable") ? settings.where("executable") : settings.where();
   input_variables_ =
       settings.get<std::vector<std::string>>("input_variables", {"pressure", "traction"});
@@ -109,11 +126,12 @@ void CalculixSolverWrapper::initialize() {
   check();
   ccx_path_ = find_executable(executable_, working_directory_);
   read_deck();
-  state_reset_ = StateReset::kRestart;
-  if (state_reset_key_ == "replay") state_reset_ = StateReset::kReplay;
-  if (state_reset_key_ == "auto")
-    for (const char* keyword : {"PLASTIC", "CREEP", "CYCLIC HARDENING", "USER MATERIAL", "DEPVAR"})
-      if (deck_->has_keyword(keyword)) state_reset_ = StateReset::kReplay;
+  state_reset_ = state_reset_key_ == "replay" ? StateReset::kReplay : StateReset::kRestart;
+  // Debian's ccx drops the material state variables from its restart files; the patched one
+  // keeps them (scripts/calculix/). Only history-dependent decks need to know which this is.
+  if (state_reset_key_ == "auto" && has_material_history(*deck_) &&
+      !calculix::restart_keeps_state_variables(ccx_path_, working_directory_))
+    state_reset_ = StateReset::kReplay;
   build_interfaces();
   // The model definition once; every first-step iteration includes it.
   std::ofstream model(file(kModelFile));

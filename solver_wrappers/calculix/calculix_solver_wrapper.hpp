@@ -9,14 +9,15 @@
 // starts from the converged state of step n, so plastic strain, hardening and geometry of
 // unconverged iterations never leak into the result. Two ways, chosen by `state_reset`:
 // - restart: each iteration reads the restart file of step n's converged iteration and runs
-//   one step; finalize_step() keeps the last iteration's restart file as the new base. Fast,
-//   but Debian's ccx 2.20 drops the material state variables (equivalent plastic strain,
-//   back stress) on *RESTART, READ: exact only for models without history variables.
+//   one step; finalize_step() keeps the last iteration's restart as the new base. Exact for
+//   every material with the ccx that scripts/install-calculix.sh builds (the default
+//   executable); Debian's ccx 2.20 drops the material state variables (equivalent plastic
+//   strain, back stress) on *RESTART, READ, so with it this is exact only without them.
 // - replay: each iteration runs all committed steps again with their converged loads, then the
-//   new step: a continuous ccx run by construction, exact for every material; the ccx time of
-//   an iteration grows with the step number.
-// `auto` (the default) replays when the deck has a history-dependent material (*PLASTIC,
-// *CREEP, *CYCLIC HARDENING, *USER MATERIAL, *DEPVAR) and restarts otherwise.
+//   new step: a continuous ccx run by construction, exact with any ccx; the ccx time of an
+//   iteration grows with the step number.
+// `auto` (the default) restarts, except for a history-dependent deck (*PLASTIC, *CREEP,
+// *CYCLIC HARDENING, *USER MATERIAL, *DEPVAR) with a ccx whose `-v` does not report the patch.
 //
 // Runs in the coupler process (no protocol): ccx is started through ChildProcess, like every
 // solver process, with the same timeout, log and clean-up rules.

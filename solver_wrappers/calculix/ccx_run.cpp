@@ -23,6 +23,24 @@ std::string read_text(const std::filesystem::path& file) {
 
 }  // namespace
 
+bool restart_keeps_state_variables(const std::filesystem::path& executable,
+                                   const std::filesystem::path& scratch_directory) {
+  ChildOptions options;
+  options.command = {executable.string(), "-v"};
+  options.working_directory = scratch_directory;
+  options.log_file = scratch_directory / "cocopp_ccx_version.log";
+  options.truncate_log = true;
+  try {
+    ChildProcess ccx(options);
+    if (!ccx.wait_for_exit(10.0)) ccx.stop(kStopGraceSeconds);
+  } catch (const std::runtime_error&) {
+    return false;
+  }
+  const std::string version = read_text(options.log_file);
+  std::filesystem::remove(options.log_file);
+  return version.find("cocopp: restart files keep the state variables") != std::string::npos;
+}
+
 std::string error_messages(const std::string& log_text) {
   std::istringstream lines(log_text);
   std::string line;

@@ -32,6 +32,12 @@ struct CcxRunResult {
 /// throws std::runtime_error if it cannot be started.
 CcxRunResult run_ccx(const CcxRunOptions& options);
 
+/// Whether this ccx carries cocopp's restart patch (scripts/install-calculix.sh): its restart
+/// files keep the material state variables, so a plastic model restarts exactly. Asks
+/// `ccx -v` in `scratch_directory` (its log goes there); false if ccx cannot be run.
+bool restart_keeps_state_variables(const std::filesystem::path& executable,
+                                   const std::filesystem::path& scratch_directory);
+
 /// ccx's *ERROR messages in a log: each from its "*ERROR" line to the next blank line.
 std::string error_messages(const std::string& log_text);
 

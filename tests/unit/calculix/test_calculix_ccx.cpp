@@ -9,6 +9,7 @@
 #include <map>
 #include <sstream>
 
+#include "solver_wrappers/calculix/calculix_solver_wrapper.hpp"
 #include "solver_wrappers/calculix/ccx_run.hpp"
 #include "solver_wrappers/process/child_process.hpp"
 #include "tests/support/error_message.hpp"
@@ -167,6 +168,7 @@ struct ResetCase {
   std::string name;
   std::string state_reset;
   bool plastic;
+  bool nlgeom = true;
 };
 
 class ResetEqualsContinuousRun : public ::testing::TestWithParam<ResetCase> {};
@@ -176,7 +178,7 @@ class ResetEqualsContinuousRun : public ::testing::TestWithParam<ResetCase> {};
 TEST_P(ResetEqualsContinuousRun, EveryStepEndsWhereTheContinuousRunDoes) {
   CalculixCase test;
   SectorCylinder cylinder;
-  cylinder.nlgeom = true;
+  cylinder.nlgeom = GetParam().nlgeom;
   cylinder.yield_stress = GetParam().plastic ? kYield : 0.0;
   const double p_y = SectorCylinder{cylinder}.yield_onset_pressure();
   const double scale = GetParam().plastic ? p_y : 2 * kYield;  // elastic: any load
@@ -200,8 +202,38 @@ TEST_P(ResetEqualsContinuousRun, EveryStepEndsWhereTheContinuousRunDoes) {
 
 INSTANTIATE_TEST_SUITE_P(CalculixCcx, ResetEqualsContinuousRun,
                          ::testing::Values(ResetCase{"RestartFilesElasticNlgeom", "restart", false},
-                                           ResetCase{"ReplayPlasticNlgeom", "auto", true}),
+                                           ResetCase{"ReplayPlasticNlgeom", "replay", true}),
                          [](const auto& info) { return info.param.name; });
+
+#ifdef COCOPP_HAVE_PATCHED_CCX
+// ccx with cocopp's restart patch (scripts/install-calculix.sh, the default executable) keeps
+// the plastic state in its restart files: restarting is exact for plastic models too.
+INSTANTIATE_TEST_SUITE_P(PatchedCcx, ResetEqualsContinuousRun,
+                         ::testing::Values(ResetCase{"RestartFilesPlasticNlgeom", "restart", true},
+                                           ResetCase{"RestartFilesPlasticSmallStrain", "restart",
+                                                     true, false},
+                                           ResetCase{"AutoPlasticNlgeom", "auto", true}),
+                         [](const auto& info) { return info.param.name; });
+
+// `auto` restarts a plastic deck with the patched ccx and replays it with Debian's, whose
+// restart files drop the plastic state; elastic decks restart with either.
+TEST(CalculixCcx, AutoStateResetFollowsTheExecutable) {
+  const auto reset_of = [](const std::string& deck, const std::string& keys) {
+    CalculixCase test;
+    test.create(deck, keys);
+    test.wrapper().initialize();
+    return dynamic_cast<const CalculixSolverWrapper&>(test.wrapper()).state_reset();
+  };
+  SectorCylinder plastic;
+  plastic.yield_stress = kYield;
+  using Reset = CalculixSolverWrapper::StateReset;
+  EXPECT_EQ(reset_of(plastic.deck(), ""), Reset::kRestart);
+  if (std::filesystem::exists("/usr/bin/ccx")) {
+    EXPECT_EQ(reset_of(plastic.deck(), "executable: /usr/bin/ccx\n"), Reset::kReplay);
+    EXPECT_EQ(reset_of(SectorCylinder{}.deck(), "executable: /usr/bin/ccx\n"), Reset::kRestart);
+  }
+}
+#endif
 
 /// Radial bore displacement at the end of each of `pressures.size()` increments of delta_t of
 /// one continuous dynamic ccx run: one step, the pressure piecewise linear in time through

@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# Install CalculiX for cocopp's calculix wrapper: Debian's calculix-ccx package (/usr/bin/ccx)
+# and, built from the same Debian source package at set-up time, a ccx with cocopp's change
+# (scripts/calculix/*.patch: restart files keep the material state variables, so a plastic
+# model restarts exactly). The source is fetched into build-deps/ (outside git, never
+# committed); the binary goes to build-deps/calculix/bin/ccx, which CMake finds and the
+# calculix wrapper uses by default (docs/solver-wrappers-calculix.md, "State reset").
+#
+# Idempotent: a second run finds the stamp file (source version + patch checksum) and returns
+# at once. The build takes about a minute on two cores.
+#   scripts/install-calculix.sh              # into ./build-deps/calculix
+#   COCOPP_DEPS_DIR=/opt/deps scripts/install-calculix.sh
+set -euo pipefail
+cd "$(dirname "$0")/.."
+deps_dir=${COCOPP_DEPS_DIR:-$PWD/build-deps}
+prefix=$deps_dir/calculix
+tree=$deps_dir/calculix-source
+stamp=$prefix/.cocopp-ready
+patches=(scripts/calculix/*.patch)
+
+sudo_cmd=()
+[ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"; }
+
+# 1. The binary package and what building ccx needs (Build-Depends of calculix-ccx).
+missing=()
+for p in calculix-ccx dpkg-dev gfortran libspooles-dev libarpack2-dev liblapack-dev libblas-dev; do
+  installed "$p" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "install-calculix: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get -o DPkg::Lock::Timeout=600 -q update
+  "${sudo_cmd[@]}" apt-get -o DPkg::Lock::Timeout=600 -q install -y --no-install-recommends "${missing[@]}"
+fi
+
+binary_version=$(dpkg-query -W -f='${Version}' calculix-ccx)
+source_version=${binary_version%+b*}  # a binary-only rebuild comes from the same source
+wanted="$source_version $(cat "${patches[@]}" | sha256sum | cut -c1-16)"
+if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$wanted" ] && [ -x "$prefix/bin/ccx" ]; then
+  echo "install-calculix: ccx $source_version with cocopp's patches in $prefix/bin is ready"
+  exit 0
+fi
+
+start=$(date +%s)
+# shellcheck source=scripts/lib/debian-source.sh
+source scripts/lib/debian-source.sh
+fetch_debian_source install-calculix calculix-ccx "$source_version" "$deps_dir" "$tree"
+
+# 2. cocopp's patches on top of Debian's (apt-get source applied those).
+for patch_file in "${patches[@]}"; do
+  patch -d "$tree" -p1 -s <"$patch_file" || {
+    echo "install-calculix: $patch_file does not apply to calculix-ccx $source_version" >&2
+    exit 1
+  }
+done
+
+# 3. Build as Debian does (debian/rules: its flags, its Makefile patch), into build-deps.
+src=$(find "$tree" -mindepth 2 -maxdepth 2 -type d -name src | head -1)
+version=$(basename "$(dirname "$src")")  # ccx_2.20
+echo "install-calculix: building $version with cocopp's patches (log: $deps_dir/calculix-build.log)"
+make -C "$src" -j "$(nproc)" \
+  CFLAGS="-O2 -w -I/usr/include/spooles -DARCH=\"Linux\" -DSPOOLES -DARPACK -DMATRIXSTORAGE -DUSE_MT=1" \
+  FFLAGS="-O2 -w -fallow-argument-mismatch" >"$deps_dir/calculix-build.log" 2>&1 || {
+  tail -20 "$deps_dir/calculix-build.log"
+  echo "install-calculix: building ccx failed (log: $deps_dir/calculix-build.log)" >&2
+  exit 1
+}
+mkdir -p "$prefix/bin"
+cp "$src/$version" "$prefix/bin/ccx"
+# `ccx -v` prints its version and exits with 201.
+version_text=$("$prefix/bin/ccx" -v 2>&1 || true)
+grep -q "cocopp: restart files keep the state variables" <<<"$version_text" || {
+  echo "install-calculix: $prefix/bin/ccx does not report cocopp's patch" >&2
+  exit 1
+}
+rm -rf "$tree"
+echo "$wanted" >"$stamp"
+echo "install-calculix: ccx $source_version with cocopp's patches ready in $prefix/bin ($(($(date +%s) - start)) s)"
