@@ -10,10 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "coupler/case/settings.hpp"
-#include "solver_wrappers/calculix/calculix_solver_wrapper.hpp"
+#include "bench/calculix_bench.hpp"
 #include "tests/support/calculix_models.hpp"
-#include "tests/unit/protocol/test_helpers.hpp"
 
 namespace {
 
@@ -31,23 +29,12 @@ int main(int argc, char** argv) {
   const int iterations = argc > 3 ? std::atoi(argv[3]) : 5;
   const int threads = argc > 4 ? std::atoi(argv[4]) : 1;
 
-  testing::TemporaryDirectory directory;
-  std::filesystem::create_directory(directory / "wall");
   testing::SectorCylinder cylinder;
   cylinder.radial = radial;
   cylinder.axial = axial;
   cylinder.length = 0.001 * axial;
-  testing::write_text(directory / "wall/wall.inp", cylinder.deck());
-  const Settings settings = Settings::load_string(
-      "type: calculix\nworking_directory: wall\ninput_file: wall.inp\ninterface_surface: "
-      "INNER\ninterface_node_set: INNERN\nsave_results: false\nthreads: " +
-          std::to_string(threads) + "\n",
-      "bench.yaml");
-  RunSettings run;
-  run.delta_t = 1.0;
-  run.case_directory = directory.path();
-  CalculixSolverWrapper wrapper(settings, run);
-  wrapper.initialize();
+  bench::CalculixBench bench(cylinder.deck(), "threads: " + std::to_string(threads) + "\n");
+  CalculixSolverWrapper& wrapper = bench.wrapper();
   Interface input = wrapper.input_interface();
   const std::string faces = input.parts().front().model_part->name;
 
