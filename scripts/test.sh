@@ -8,7 +8,6 @@ scripts/install-dependencies.sh
 scripts/build.sh -DCOCOPP_WERROR=ON
 ctest --test-dir build --output-on-failure --timeout 300
 if [ "${COCOPP_SKIP_SANITIZE:-0}" != 1 ]; then
-  # No -Werror here: GCC 12 gives false maybe-uninitialized warnings under -fsanitize.
-  BUILD_DIR=build-asan BUILD_TYPE=RelWithDebInfo scripts/build.sh -DCOCOPP_SANITIZE=ON -DCOCOPP_WERROR=OFF
+  BUILD_DIR=build-asan BUILD_TYPE=RelWithDebInfo scripts/build.sh -DCOCOPP_SANITIZE=ON -DCOCOPP_WERROR=ON
   ctest --test-dir build-asan --output-on-failure --timeout 600
 fi
