@@ -50,7 +50,7 @@ def main():
         for position, colour in zip([-0.015, 0.0, 0.015], ["C0", "C1", "C2"]):
             i = int(np.argmin(np.abs(z - position)))
             history.plot(time * 1e3, radial[:, i] * 1e6, style, color=colour,
-                         label="%s, z = %.0f mm" % (short, z[i] * 1e3))
+                         label="%s, z = %.0f mm" % (short, round(z[i] * 1e3) + 0.0))  # no "-0"
         for step, colour in zip([20, 50, steps], ["C3", "C4", "C5"]):
             row = step - 1
             profile.plot(z * 1e3, radial[row] * 1e6, style, color=colour,

@@ -171,6 +171,11 @@ struct ResetCase {
   bool nlgeom = true;
 };
 
+// ctest names the test with its parameter: the case name, not gtest's byte dump.
+void PrintTo(const ResetCase& reset_case, std::ostream* out) {
+  *out << reset_case.name;
+}
+
 class ResetEqualsContinuousRun : public ::testing::TestWithParam<ResetCase> {};
 
 // Three coupled time steps, each with an unconverged iteration at a load far off before the
