@@ -1,13 +1,16 @@
 #include "solver_wrappers/process/child_process.hpp"
 
 #include <fcntl.h>
+#include <poll.h>
 #include <sys/prctl.h>
+#include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <climits>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
@@ -175,6 +178,10 @@ ChildProcess::ChildProcess(const ChildOptions& options) {
   ::setpgid(pid, pid);  // the child does the same: no window in which it has no group
   register_child(pid);
   pid_ = pid;
+  // Readable when the child exits, so that wait_for_exit() wakes at once (-1 where the kernel
+  // has no pidfd_open: wait_for_exit() then polls).
+  // A raw syscall: glibc 2.36's <sys/pidfd.h> declares pidfd_open without extern "C".
+  exit_fd_ = static_cast<int>(::syscall(SYS_pidfd_open, pid, 0));
 
   // The report pipe closes on a successful exec; a StartFailure arrives otherwise.
   StartFailure failure{};
@@ -184,12 +191,14 @@ ChildProcess::ChildProcess(const ChildOptions& options) {
   ::close(report[0]);
   if (got == static_cast<ssize_t>(sizeof failure)) {
     stop(0.0);
+    if (exit_fd_ >= 0) ::close(exit_fd_);  // no destructor runs after a throwing constructor
     throw std::runtime_error(start_failure_text(failure, executable, working_directory));
   }
 }
 
 ChildProcess::~ChildProcess() {
   stop(1.0);
+  if (exit_fd_ >= 0) ::close(exit_fd_);
 }
 
 void ChildProcess::on_reaped(int status) {
@@ -225,7 +234,19 @@ bool ChildProcess::wait_for_exit(double timeout_seconds) {
                        std::chrono::duration<double>(std::max(timeout_seconds, 0.0)));
   auto pause = std::chrono::milliseconds(1);
   while (running()) {
-    if (std::chrono::steady_clock::now() >= end) return false;
+    const auto now = std::chrono::steady_clock::now();
+    if (now >= end) return false;
+    if (exit_fd_ >= 0) {
+      // Block until the exit itself: a short-lived solver run (ccx, once per coupling
+      // iteration) must not lose a polling interval every time.
+      const auto left = std::chrono::ceil<std::chrono::milliseconds>(end - now).count();
+      pollfd exit_event{exit_fd_, POLLIN, 0};
+      if (::poll(&exit_event, 1, static_cast<int>(std::min<long long>(left, INT_MAX))) >= 0 ||
+          errno == EINTR)
+        continue;
+      ::close(exit_fd_);  // poll() refuses the descriptor: fall back to polling waitpid
+      exit_fd_ = -1;
+    }
     std::this_thread::sleep_for(pause);
     pause = std::min(pause * 2, std::chrono::milliseconds(20));
   }

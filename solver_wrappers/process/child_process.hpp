@@ -50,7 +50,8 @@ class ChildProcess {
  private:
   void on_reaped(int status);
 
-  pid_t pid_ = -1;  ///< also the process group id
+  pid_t pid_ = -1;    ///< also the process group id
+  int exit_fd_ = -1;  ///< pidfd of the child: readable once it has exited
   bool reaped_ = false;
   bool status_known_ = false;
   int status_ = 0;
