@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Install CalculiX for cocopp's calculix wrapper: Debian's calculix-ccx package (/usr/bin/ccx)
-# and, built from the same Debian source package at set-up time, a ccx with cocopp's change
-# (scripts/calculix/*.patch: restart files keep the material state variables, so a plastic
-# model restarts exactly). The source is fetched into build-deps/ (outside git, never
-# committed); the binary goes to build-deps/calculix/bin/ccx, which CMake finds and the
+# and, built from the same Debian source package at set-up time, a ccx with cocopp's changes
+# (scripts/calculix/*.patch, applied in name order: restart files keep the material state
+# variables, so a plastic model restarts exactly, and the axisymmetry flag, so that a CAX model
+# restarts at all). The source is fetched into build-deps/ (outside git, never committed); the
+# binary goes to build-deps/calculix/bin/ccx, which CMake finds and the
 # calculix wrapper uses by default (docs/solver-wrappers-calculix.md, "State reset").
 #
 # Idempotent: a second run finds the stamp file (source version + patch checksum) and returns
@@ -70,8 +71,8 @@ mkdir -p "$prefix/bin"
 cp "$src/$version" "$prefix/bin/ccx"
 # `ccx -v` prints its version and exits with 201.
 version_text=$("$prefix/bin/ccx" -v 2>&1 || true)
-grep -q "cocopp: restart files keep the state variables" <<<"$version_text" || {
-  echo "install-calculix: $prefix/bin/ccx does not report cocopp's patch" >&2
+grep -q "cocopp: restart files keep the state variables and the axisymmetry flag" <<<"$version_text" || {
+  echo "install-calculix: $prefix/bin/ccx does not report cocopp's patches" >&2
   exit 1
 }
 rm -rf "$tree"
