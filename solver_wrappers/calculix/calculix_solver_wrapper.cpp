@@ -52,10 +52,19 @@ std::string default_executable() {
 /// are expanded to C3D8R or C3D20R), or null.
 const std::pair<const std::int64_t, calculix::Element>* reduced_integration_element(
     const calculix::InputDeck& deck) {
-  static const std::set<std::string> reduced = {"C3D8R", "C3D20R", "CPS4R", "CPE4R", "CPS8R",
-                                                "CPE8R", "S4R",    "S8R",   "B31R",  "B32R"};
+  static const std::set<std::string> reduced = {"C3D8R", "C3D20R", "CPS4R", "CPE4R",
+                                                "CPS8R", "CPE8R",  "CAX4R", "CAX8R",
+                                                "S4R",   "S8R",    "B31R",  "B32R"};
   for (const auto& element : deck.elements())
     if (reduced.count(element.second.type) != 0) return &element;
+  return nullptr;
+}
+
+/// The first axisymmetric (CAX*) element, or null.
+const std::pair<const std::int64_t, calculix::Element>* axisymmetric_element(
+    const calculix::InputDeck& deck) {
+  for (const auto& element : deck.elements())
+    if (element.second.type.rfind("CAX", 0) == 0) return &element;
   return nullptr;
 }
 
@@ -90,6 +99,8 @@ CalculixSolverWrapper::CalculixSolverWrapper(const Settings& settings, const Run
   save_results_ = settings.get<bool>("save_results", true);
   allow_reduced_integration_ = settings.get<bool>("allow_reduced_integration", false);
   state_reset_key_ = settings.get_choice("state_reset", "auto", {"auto", "restart", "replay"});
+  state_reset_where_ =
+      settings.has("state_reset") ? settings.where("state_reset") : settings.where();
   log_file_ = working_directory_ / settings.get<std::string>("log_file", name_ + ".log");
   if (run.timestep_start != 0)
     settings.fail("type",
@@ -126,12 +137,7 @@ void CalculixSolverWrapper::initialize() {
   check();
   ccx_path_ = find_executable(executable_, working_directory_);
   read_deck();
-  state_reset_ = state_reset_key_ == "replay" ? StateReset::kReplay : StateReset::kRestart;
-  // Debian's ccx drops the material state variables from its restart files; the patched one
-  // keeps them (scripts/calculix/). Only history-dependent decks need to know which this is.
-  if (state_reset_key_ == "auto" && has_material_history(*deck_) &&
-      !calculix::restart_keeps_state_variables(ccx_path_, working_directory_))
-    state_reset_ = StateReset::kReplay;
+  choose_state_reset();
   build_interfaces();
   // The model definition once; every first-step iteration includes it.
   std::ofstream model(file(kModelFile));
@@ -163,6 +169,32 @@ void CalculixSolverWrapper::read_deck() {
   } catch (const calculix::DeckError& e) {
     throw CaseError(input_file_where_ + ": solver '" + name_ + "': " + e.what());
   }
+}
+
+// Restart files reset the model exactly when this ccx restarts what the deck needs: Debian's
+// ccx drops the material state variables and crashes on axisymmetric models; the patched one
+// (scripts/calculix/) does neither. `auto` replays where restarting would be wrong.
+void CalculixSolverWrapper::choose_state_reset() {
+  state_reset_ = state_reset_key_ == "replay" ? StateReset::kReplay : StateReset::kRestart;
+  const bool history = has_material_history(*deck_);
+  const auto* axisymmetric = axisymmetric_element(*deck_);
+  if (state_reset_ == StateReset::kReplay || (!history && axisymmetric == nullptr)) return;
+  const auto support = calculix::restart_support(ccx_path_, working_directory_);
+  const bool crashes = axisymmetric != nullptr && !support.axisymmetry;
+  const bool forgets = history && !support.state_variables;
+  if (state_reset_key_ == "auto") {
+    if (crashes || forgets) state_reset_ = StateReset::kReplay;
+    return;
+  }
+  // An explicit restart that would forget the plastic state is the user's choice (documented);
+  // one that would crash is not.
+  if (crashes)
+    throw CaseError(fmt::format(
+        "{}: solver '{}': state_reset: restart, but {} crashes when it restarts an "
+        "axisymmetric model (element {} is a {}): use the ccx that scripts/install-calculix.sh "
+        "builds (the default executable), or state_reset: auto or replay",
+        state_reset_where_, name_, ccx_path_.string(), axisymmetric->first,
+        axisymmetric->second.type));
 }
 
 // ccx starts every *DYNAMIC step by solving for the acceleration with the internal forces of

@@ -10,14 +10,16 @@
 // unconverged iterations never leak into the result. Two ways, chosen by `state_reset`:
 // - restart: each iteration reads the restart file of step n's converged iteration and runs
 //   one step; finalize_step() keeps the last iteration's restart as the new base. Exact for
-//   every material with the ccx that scripts/install-calculix.sh builds (the default
-//   executable); Debian's ccx 2.20 drops the material state variables (equivalent plastic
-//   strain, back stress) on *RESTART, READ, so with it this is exact only without them.
+//   every material and for axisymmetric (CAX) models with the ccx that
+//   scripts/install-calculix.sh builds (the default executable); Debian's ccx 2.20 drops the
+//   material state variables (equivalent plastic strain, back stress) on *RESTART, READ, so
+//   with it this is exact only without them, and it crashes restarting a CAX model.
 // - replay: each iteration runs all committed steps again with their converged loads, then the
 //   new step: a continuous ccx run by construction, exact with any ccx; the ccx time of an
 //   iteration grows with the step number.
-// `auto` (the default) restarts, except for a history-dependent deck (*PLASTIC, *CREEP,
-// *CYCLIC HARDENING, *USER MATERIAL, *DEPVAR) with a ccx whose `-v` does not report the patch.
+// `auto` (the default) restarts, except where the ccx's `-v` does not report the patch that a
+// history-dependent deck (*PLASTIC, *CREEP, *CYCLIC HARDENING, *USER MATERIAL, *DEPVAR) or an
+// axisymmetric one needs: then it replays.
 //
 // Runs in the coupler process (no protocol): ccx is started through ChildProcess, like every
 // solver process, with the same timeout, log and clean-up rules.
@@ -71,6 +73,7 @@ class CalculixSolverWrapper : public SolverWrapper {
 
  private:
   void read_deck();
+  void choose_state_reset();
   void check_dynamic_elements() const;
   void build_interfaces();
   void write_iteration_deck() const;
@@ -95,7 +98,7 @@ class CalculixSolverWrapper : public SolverWrapper {
   bool allow_reduced_integration_ = false;
   std::filesystem::path log_file_;
   std::string state_reset_key_;
-  std::string working_directory_where_, input_file_where_, executable_where_;
+  std::string working_directory_where_, input_file_where_, executable_where_, state_reset_where_;
   RunSettings run_;
 
   // From the deck.

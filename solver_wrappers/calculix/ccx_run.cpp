@@ -23,8 +23,8 @@ std::string read_text(const std::filesystem::path& file) {
 
 }  // namespace
 
-bool restart_keeps_state_variables(const std::filesystem::path& executable,
-                                   const std::filesystem::path& scratch_directory) {
+CcxRestartSupport restart_support(const std::filesystem::path& executable,
+                                  const std::filesystem::path& scratch_directory) {
   ChildOptions options;
   options.command = {executable.string(), "-v"};
   options.working_directory = scratch_directory;
@@ -34,11 +34,14 @@ bool restart_keeps_state_variables(const std::filesystem::path& executable,
     ChildProcess ccx(options);
     if (!ccx.wait_for_exit(10.0)) ccx.stop(kStopGraceSeconds);
   } catch (const std::runtime_error&) {
-    return false;
+    return {};
   }
+  // The version line the patches print (01-... and 02-restart-axisymmetry.patch).
   const std::string version = read_text(options.log_file);
   std::filesystem::remove(options.log_file);
-  return version.find("cocopp: restart files keep the state variables") != std::string::npos;
+  const auto says = [&](const char* text) { return version.find(text) != std::string::npos; };
+  return {says("cocopp: restart files keep the state variables"),
+          says("cocopp: restart files keep the state variables and the axisymmetry flag")};
 }
 
 std::string error_messages(const std::string& log_text) {

@@ -32,11 +32,19 @@ struct CcxRunResult {
 /// throws std::runtime_error if it cannot be started.
 CcxRunResult run_ccx(const CcxRunOptions& options);
 
-/// Whether this ccx carries cocopp's restart patch (scripts/install-calculix.sh): its restart
-/// files keep the material state variables, so a plastic model restarts exactly. Asks
-/// `ccx -v` in `scratch_directory` (its log goes there); false if ccx cannot be run.
-bool restart_keeps_state_variables(const std::filesystem::path& executable,
-                                   const std::filesystem::path& scratch_directory);
+/// What this ccx's restart files keep beyond Debian's ccx 2.20: cocopp's patches
+/// (scripts/calculix/, built by scripts/install-calculix.sh) add both.
+struct CcxRestartSupport {
+  /// The material state variables (plastic strain, back stress): plastic models restart
+  /// exactly. Debian's ccx drops them without mortar contact.
+  bool state_variables = false;
+  /// The axisymmetry flag: CAX models restart at all. Debian's ccx crashes on them.
+  bool axisymmetry = false;
+};
+
+/// Asks `ccx -v` in `scratch_directory` (its log goes there); none if ccx cannot be run.
+CcxRestartSupport restart_support(const std::filesystem::path& executable,
+                                  const std::filesystem::path& scratch_directory);
 
 /// ccx's *ERROR messages in a log: each from its "*ERROR" line to the next blank line.
 std::string error_messages(const std::string& log_text);

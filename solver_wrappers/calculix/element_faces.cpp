@@ -11,10 +11,13 @@ namespace {
 
 enum class Shape { kLine2, kLine3, kQuad4, kQuad8 };
 
+constexpr double kPi = 3.14159265358979323846;
+
 struct FaceTopology {
   Shape shape;
   std::vector<int> local_nodes;  ///< 1-based element node numbers, corners first
   bool plane = false;            ///< an edge of a plane element: times the thickness
+  bool axisymmetric = false;     ///< an edge of a CAX element: swept around the y axis
 };
 
 // Node numbering of hexahedral faces (CalculiX manual, C3D8 and C3D20): the corner nodes of
@@ -35,16 +38,13 @@ bool starts_with(const std::string& text, const std::string& prefix) {
 FaceTopology topology(const std::string& type, int face, std::int64_t element) {
   const std::string where =
       "element " + std::to_string(element) + " (" + type + "), face S" + std::to_string(face);
-  if (starts_with(type, "CAX"))
-    throw DeckError(where +
-                    ": axisymmetric elements (CAX*) cannot be used: Debian's ccx 2.20 crashes "
-                    "when it restarts an axisymmetric model, and the wrapper restarts every "
-                    "coupling iteration. Model the axisymmetric body as a thin sector of C3D20R "
-                    "elements with a cylindrical *TRANSFORM (docs/solver-wrappers-calculix.md)");
   const bool hex8 = starts_with(type, "C3D8");
   const bool hex20 = starts_with(type, "C3D20");
-  const bool quad4 = starts_with(type, "CPE4") || starts_with(type, "CPS4");
-  const bool quad8 = starts_with(type, "CPE8") || starts_with(type, "CPS8");
+  const bool axisymmetric = starts_with(type, "CAX4") || starts_with(type, "CAX8");
+  const bool quad4 =
+      starts_with(type, "CPE4") || starts_with(type, "CPS4") || starts_with(type, "CAX4");
+  const bool quad8 =
+      starts_with(type, "CPE8") || starts_with(type, "CPS8") || starts_with(type, "CAX8");
   if (hex8 || hex20) {
     if (face < 1 || face > 6) throw DeckError(where + ": hexahedra have faces S1 to S6");
     const auto& corners = kHexCorners[static_cast<std::size_t>(face - 1)];
@@ -57,13 +57,15 @@ FaceTopology topology(const std::string& type, int face, std::int64_t element) {
   }
   if (quad4 || quad8) {
     if (face < 1 || face > 4) throw DeckError(where + ": quadrilaterals have faces S1 to S4");
-    FaceTopology result{quad4 ? Shape::kLine2 : Shape::kLine3, {face, face % 4 + 1}, true};
+    FaceTopology result{
+        quad4 ? Shape::kLine2 : Shape::kLine3, {face, face % 4 + 1}, !axisymmetric, axisymmetric};
     if (quad8) result.local_nodes.push_back(face + 4);
     return result;
   }
   throw DeckError(where +
                   ": element type not supported for interface faces (supported: C3D8, C3D8R, "
-                  "C3D8I, C3D20, C3D20R, CPE4, CPE4R, CPE8, CPE8R, CPS4, CPS4R, CPS8, CPS8R)");
+                  "C3D8I, C3D20, C3D20R, CPE4, CPE4R, CPE8, CPE8R, CPS4, CPS4R, CPS8, CPS8R, "
+                  "CAX4, CAX4R, CAX8, CAX8R)");
 }
 
 /// Shape functions of a face at natural coordinates (xi, eta); eta unused for lines.
@@ -152,7 +154,10 @@ FaceGeometry face_geometry(const InputDeck& deck, const ElementFace& face) {
       const double jacobian =
           line ? tangents.col(0).norm()
                : Eigen::Vector3d(tangents.col(0)).cross(Eigen::Vector3d(tangents.col(1))).norm();
-      const double w = gauss_weights[i] * (line ? 1.0 : gauss_weights[j]) * jacobian * thickness;
+      // A CAX edge stands for the ring it sweeps (x is the radius): ccx takes the *CLOAD of
+      // axisymmetric models per 360 degrees, so the weights are for the whole ring.
+      const double sweep = topo.axisymmetric ? 2 * kPi * n.dot(xyz.col(0)) : thickness;
+      const double w = gauss_weights[i] * (line ? 1.0 : gauss_weights[j]) * jacobian * sweep;
       geometry.weights += w * n;
       first_moment += w * (xyz.transpose() * n);
     }

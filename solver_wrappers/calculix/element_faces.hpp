@@ -3,7 +3,9 @@
 // isoparametric shape functions: area, centroid and the consistent nodal weights
 // w_i = integral of N_i over the face, so that a uniform traction t on the face is the nodal
 // forces w_i t exactly (for quadratic faces the corner weights are negative, as they must be).
-// Faces of plane elements (CPE*, CPS*) are edges times the section thickness.
+// Faces of plane elements (CPE*, CPS*) are edges times the section thickness; faces of
+// axisymmetric elements (CAX*, x = radius, y = axis) are edges swept around the axis: area and
+// weights are for the whole ring (2 pi r), as ccx takes axisymmetric *CLOADs per 360 degrees.
 #include <Eigen/Core>
 #include <cstdint>
 #include <vector>
@@ -20,7 +22,7 @@ struct FaceGeometry {
 };
 
 /// Throws DeckError for element types or face numbers the wrapper does not support (the
-/// message lists the supported ones; axisymmetric CAX* elements are refused with the reason).
+/// message lists the supported ones).
 FaceGeometry face_geometry(const InputDeck& deck, const ElementFace& face);
 
 }  // namespace cocopp::calculix

@@ -2,9 +2,11 @@
 // CalculiX decks of simple structures with known answers, for the CalculiX wrapper's tests and
 // benchmark:
 // - a thick-walled cylinder (inner radius ri, outer ro) as a thin sector of C3D20R elements with
-//   a cylindrical *TRANSFORM and zero hoop displacement: the axisymmetric model the wrapper
-//   uses (Debian's ccx cannot restart CAX elements). Surface INNER (faces on r = ri, loads),
-//   node sets INNERN (nodes on r = ri), NALL, SUPPORT (the outer edge at z = 0).
+//   a cylindrical *TRANSFORM and zero hoop displacement (axis z; runs with any ccx), or as an
+//   axisymmetric CAX8 model (element_type CAX8 or CAX8R: x = radius, y = axis; restarts only
+//   with cocopp's patched ccx). Surface INNER (faces on r = ri, loads), node sets INNERN (nodes
+//   on r = ri), NALL, SUPPORT (the outer edge at the axial position 0); the CAX model also has
+//   surface TOP and node set TOPN (the end at y = length).
 // - a plane-strain strip of CPE8 elements (Lx x Ly, thickness t), on rollers at y = 0 (x held at
 //   one corner): surface
 //   TOP (faces on y = Ly) and node sets TOPN, BOTTOM.
@@ -56,12 +58,37 @@ struct SectorCylinder {
     return doubled_index % 2 == 0 ? edges[m] : (edges[m] + edges[m + 1]) / 2;
   }
 
+  /// The axisymmetric (CAX) model instead of the sector.
+  bool axisymmetric() const { return element_type.rfind("CAX", 0) == 0; }
+
   std::string deck() const {
+    std::ostringstream out;
+    out.precision(13);  // ccx reads numbers from 20-character fields
+    if (axisymmetric()) {
+      write_axisymmetric_mesh(out);
+    } else {
+      write_sector_mesh(out);
+    }
+    out << "*MATERIAL, NAME=STEEL\n*ELASTIC\n" << young << ", " << poisson << "\n";
+    if (yield_stress > 0) out << "*PLASTIC\n" << yield_stress << ", 0.\n";
+    if (density > 0) out << "*DENSITY\n" << density << "\n";
+    out << "*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL\n";
+    const int axial_dof = axisymmetric() ? 2 : 3;
+    out << "*BOUNDARY\n"
+        << (axisymmetric() ? "" : "NALL, 2, 2\n") << (plane_strain ? "NALL" : "SUPPORT") << ", "
+        << axial_dof << ", " << axial_dof << "\n";
+    out << "*STEP" << (nlgeom ? ", NLGEOM" : "") << ", INC=1000" << step_options << "\n"
+        << procedure << "\n"
+        << increments << "\n";
+    out << extra_step_cards;
+    out << "*END STEP\n";
+    return out.str();
+  }
+
+  void write_sector_mesh(std::ostringstream& out) const {
     const int ni = 2 * radial + 1, nj = 3, nk = 2 * axial + 1;
     const auto id = [&](int i, int j, int k) { return 1 + i + ni * (j + nj * k); };
     const auto exists = [](int i, int j, int k) { return (i % 2) + (j % 2) + (k % 2) <= 1; };
-    std::ostringstream out;
-    out.precision(13);  // ccx reads numbers from 20-character fields
     out << "** Thick-walled cylinder: " << angle_degrees << " degree sector of " << element_type
         << "\n";
     out << "*NODE, NSET=NALL\n";
@@ -101,17 +128,36 @@ struct SectorCylinder {
     out << "*SURFACE, NAME=INNER, TYPE=ELEMENT\n";  // r = ri is face S6 (xi = -1)
     for (const int element : inner_elements) out << element << ", S6\n";
     out << "*TRANSFORM, NSET=NALL, TYPE=C\n0., 0., 0., 0., 0., 1.\n";
-    out << "*MATERIAL, NAME=STEEL\n*ELASTIC\n" << young << ", " << poisson << "\n";
-    if (yield_stress > 0) out << "*PLASTIC\n" << yield_stress << ", 0.\n";
-    if (density > 0) out << "*DENSITY\n" << density << "\n";
-    out << "*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL\n";
-    out << "*BOUNDARY\nNALL, 2, 2\n" << (plane_strain ? "NALL" : "SUPPORT") << ", 3, 3\n";
-    out << "*STEP" << (nlgeom ? ", NLGEOM" : "") << ", INC=1000" << step_options << "\n"
-        << procedure << "\n"
-        << increments << "\n";
-    out << extra_step_cards;
-    out << "*END STEP\n";
-    return out.str();
+  }
+
+  void write_axisymmetric_mesh(std::ostringstream& out) const {
+    const int ni = 2 * radial + 1, nk = 2 * axial + 1;
+    const auto id = [&](int i, int k) { return 1 + i + ni * k; };
+    out << "** Thick-walled cylinder: axisymmetric " << element_type << " (x radius, y axis)\n";
+    out << "*NODE, NSET=NALL\n";
+    for (int k = 0; k < nk; ++k)
+      for (int i = 0; i < ni; ++i)
+        if ((i % 2) + (k % 2) <= 1)
+          out << id(i, k) << ", " << radius(i) << ", " << length * k / (nk - 1) << ", 0.\n";
+    // CAX8: corners counter-clockwise in the x-y plane, then the mid-side nodes.
+    out << "*ELEMENT, TYPE=" << element_type << ", ELSET=EALL\n";
+    for (int q = 0; q < axial; ++q)
+      for (int m = 0; m < radial; ++m) {
+        const int i = 2 * m, k = 2 * q;
+        out << 1 + m + radial * q << ", " << id(i, k) << ", " << id(i + 2, k) << ", "
+            << id(i + 2, k + 2) << ", " << id(i, k + 2) << ", " << id(i + 1, k) << ", "
+            << id(i + 2, k + 1) << ", " << id(i + 1, k + 2) << ", " << id(i, k + 1) << "\n";
+      }
+    out << "*NSET, NSET=INNERN\n";
+    for (int k = 0; k < nk; ++k) out << id(0, k) << ",\n";
+    out << "*NSET, NSET=SUPPORT\n" << id(ni - 1, 0) << ",\n";
+    out << "*SURFACE, NAME=INNER, TYPE=ELEMENT\n";  // r = ri is the edge S4 (nodes 4-1)
+    for (int q = 0; q < axial; ++q) out << 1 + radial * q << ", S4\n";
+    // The end y = length (an annulus), for loads on radial edges: edge S3 (nodes 3-4).
+    out << "*NSET, NSET=TOPN\n";
+    for (int i = 0; i < ni; ++i) out << id(i, nk - 1) << ",\n";
+    out << "*SURFACE, NAME=TOP, TYPE=ELEMENT\n";
+    for (int m = 0; m < radial; ++m) out << 1 + m + radial * (axial - 1) << ", S3\n";
   }
 
   /// Lamé: radial displacement at radius r of the plane-strain cylinder under internal
@@ -134,8 +180,10 @@ struct SectorCylinder {
     return yield_stress / von_mises;
   }
 
-  /// Area of the inner surface of the sector.
-  double inner_area() const { return ri * angle_degrees * kPi / 180.0 * length; }
+  /// Area of the inner surface: of the sector, or of the whole bore (axisymmetric).
+  double inner_area() const {
+    return ri * (axisymmetric() ? 2 * kPi : angle_degrees * kPi / 180.0) * length;
+  }
 };
 
 struct PlaneStrainStrip {

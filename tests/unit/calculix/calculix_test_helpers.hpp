@@ -35,6 +35,7 @@ class CalculixCase {
                         const std::string& surface = "INNER",
                         const std::string& node_set = "INNERN") {
     write_text(directory_ / "wall/wall.inp", deck);
+    axisymmetric_ = deck.find("TYPE=CAX") != std::string::npos;
     settings_ = std::make_unique<Settings>(Settings::load_string(
         "type: calculix\nname: wall\nworking_directory: wall\ninput_file: wall.inp\n"
         "interface_surface: " +
@@ -65,8 +66,9 @@ class CalculixCase {
     return output.values(part, "displacement");
   }
 
-  /// Radial displacement of each interface node (about the z axis).
+  /// Radial displacement of each interface node (about the z axis; x in a CAX model).
   Eigen::VectorXd radial(const RowMatrix& displacement) const {
+    if (axisymmetric_) return displacement.col(0);
     const auto& nodes = *wrapper_->output_interface().parts().front().model_part;
     Eigen::VectorXd result(displacement.rows());
     for (Eigen::Index i = 0; i < displacement.rows(); ++i) {
@@ -85,6 +87,7 @@ class CalculixCase {
   RunSettings run_;
   std::unique_ptr<Settings> settings_;
   std::unique_ptr<SolverWrapper> wrapper_;
+  bool axisymmetric_ = false;  ///< a CAX deck: x is the radius, y the axis
 };
 
 /// Every "<quantity> ... for set <set> and time <t>" block of a .dat file: time -> rows of

@@ -137,15 +137,39 @@ TEST_F(DeckTest, PlaneElementEdgesCountTheThickness) {
   EXPECT_NEAR(face.weights[2], 2 * area / 3, 1e-14);
 }
 
-TEST_F(DeckTest, AxisymmetricElementsAreRefusedWithTheReason) {
-  const InputDeck deck = read(
+// Edges of axisymmetric elements stand for the rings they sweep (ccx takes the *CLOAD of CAX
+// models per 360 degrees): area 2 pi r L on the bore, pi (r2^2 - r1^2) on an end, the weights
+// integrals of N_i 2 pi r, the centroid weighted by the radius.
+TEST_F(DeckTest, AxisymmetricEdgesAreRings) {
+  SectorCylinder cylinder;
+  cylinder.element_type = "CAX8";
+  const InputDeck deck = read(cylinder.deck());
+  const auto bore = calculix::face_geometry(deck, deck.surface("INNER").front());
+  const double ring = cylinder.inner_area();  // 2 pi ri L
+  EXPECT_NEAR(bore.area, ring, 1e-12 * ring);
+  ASSERT_EQ(bore.weights.size(), 3);
+  EXPECT_NEAR(bore.weights[0], ring / 6, 1e-12 * ring);
+  EXPECT_NEAR(bore.weights[1], ring / 6, 1e-12 * ring);
+  EXPECT_NEAR(bore.weights[2], 2 * ring / 3, 1e-12 * ring);
+  EXPECT_TRUE(bore.centroid.isApprox(Eigen::Vector3d(cylinder.ri, cylinder.length / 2, 0), 1e-12));
+
+  const auto end = calculix::face_geometry(deck, deck.surface("TOP").front());  // element 1
+  const double r1 = cylinder.ri, r2 = cylinder.radius(2);
+  const double annulus = kPi * (r2 * r2 - r1 * r1);
+  EXPECT_NEAR(end.area, annulus, 1e-12 * annulus);
+  EXPECT_NEAR(end.weights.sum(), annulus, 1e-12 * annulus);
+  // Node 3 (outer end) carries more of the ring than node 4 (inner end).
+  EXPECT_GT(end.weights[0], end.weights[1]);
+  const double centroid_radius = 2.0 / 3.0 * (r2 * r2 * r2 - r1 * r1 * r1) / (r2 * r2 - r1 * r1);
+  EXPECT_NEAR(end.centroid.x(), centroid_radius, 1e-12 * r2);
+  EXPECT_NEAR(end.centroid.y(), cylinder.length, 1e-12 * cylinder.length);
+
+  const InputDeck linear = read(
       "*NODE\n1, 1, 0\n2, 2, 0\n3, 2, 1\n4, 1, 1\n*ELEMENT, TYPE=CAX4, ELSET=E\n1, 1, 2, 3, 4\n" +
       kStep);
-  const std::string message = error_message<DeckError>([&] {
-    calculix::face_geometry(deck, {1, 4});
-  });
-  EXPECT_CONTAINS(message, "crashes when it restarts an axisymmetric model");
-  EXPECT_CONTAINS(message, "C3D20R");
+  const auto edge = calculix::face_geometry(linear, {1, 4});  // r = 1, length 1
+  EXPECT_NEAR(edge.area, 2 * kPi, 1e-12);
+  EXPECT_NEAR(edge.weights[0], kPi, 1e-12);
 }
 
 TEST_F(DeckTest, LoadsFileHasPressuresAndRotatedNodalForces) {
@@ -304,6 +328,12 @@ TEST_F(CalculixWithoutCcx, DynamicDeckRefusesReducedIntegrationElements) {
   EXPECT_CONTAINS(message, "element 1 is a C3D20R (reduced integration) in a *DYNAMIC deck");
   EXPECT_CONTAINS(message, "Use the fully integrated element (C3D20)");
   EXPECT_CONTAINS(message, "allow_reduced_integration: true");
+
+  cylinder.element_type = "CAX8R";  // expanded into C3D20R
+  test.create(cylinder.deck(), "executable: /bin/true\n");
+  EXPECT_CONTAINS(testing::error_message<CaseError>([&] { test.wrapper().initialize(); }),
+                  "element 1 is a CAX8R (reduced integration) in a *DYNAMIC deck");
+  cylinder.element_type = "C3D20R";
 
   test.create(cylinder.deck(), "executable: /bin/true\nallow_reduced_integration: true\n");
   EXPECT_NO_THROW(test.wrapper().initialize());
