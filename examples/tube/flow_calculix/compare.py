@@ -10,6 +10,9 @@ thin-ring tube structure with backward Euler). The runs must be done first:
   build/bin/cocopp run examples/tube/flow_calculix/equivalent_tube/case.yaml
   build/bin/cocopp run examples/tube/flow_structure/case.yaml
   /usr/bin/python3 examples/tube/flow_calculix/compare.py [-o docs/tube-flow-calculix.png]
+
+If case_axisymmetric.yaml (the same wall as CAX8 elements) has run too, its difference from the
+sector is printed.
 """
 import argparse
 import os
@@ -73,6 +76,12 @@ def main():
         print("  %s: peak %.3g m, RMS difference / RMS of it: %.3f"
               % (label, np.abs(radial).max(),
                  np.sqrt(np.mean((calculix - radial) ** 2) / np.mean(radial ** 2))))
+    axisymmetric = os.path.join(HERE, "results", "case_axisymmetric.h5")
+    if os.path.exists(axisymmetric):
+        radial = load(axisymmetric)[2][:steps]
+        print("  CalculiX CAX8 (case_axisymmetric): peak %.4g m, largest difference from the "
+              "sector / peak: %.1e" % (np.abs(radial).max(),
+                                       np.abs(calculix - radial).max() / np.abs(calculix).max()))
 
 
 if __name__ == "__main__":
