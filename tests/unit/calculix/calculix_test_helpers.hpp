@@ -46,6 +46,16 @@ class CalculixCase {
     return *wrapper_;
   }
 
+  /// create(), initialize() and the first time step: a wrapper ready to solve().
+  SolverWrapper& start(const std::string& deck, const std::string& keys = "",
+                       const std::string& surface = "INNER",
+                       const std::string& node_set = "INNERN") {
+    create(deck, keys, surface, node_set);
+    wrapper_->initialize();
+    wrapper_->initialize_step(1, 1.0);
+    return *wrapper_;
+  }
+
   SolverWrapper& wrapper() { return *wrapper_; }
   std::filesystem::path path(const std::string& name) const { return directory_ / name; }
 

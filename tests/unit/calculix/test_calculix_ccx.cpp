@@ -37,9 +37,7 @@ double max_abs(const Eigen::VectorXd& values) {
 TEST(CalculixCcx, ThickWalledCylinderMatchesLame) {
   CalculixCase test;
   SectorCylinder cylinder;
-  test.create(cylinder.deck());
-  test.wrapper().initialize();
-  test.wrapper().initialize_step(1, 1.0);
+  test.start(cylinder.deck());
   const double p = 100e6;
   const RowMatrix u = test.solve(p);
   const Eigen::VectorXd radial = test.radial(u);
@@ -65,9 +63,7 @@ double permanent_set(double p) {
   cylinder.radial = 16;
   cylinder.grading = 4.0;
   cylinder.yield_stress = kYield;
-  test.create(cylinder.deck());
-  test.wrapper().initialize();
-  test.wrapper().initialize_step(1, 1.0);
+  test.start(cylinder.deck());
   const double loaded = max_abs(test.radial(test.solve(p)));
   test.wrapper().finalize_step();
   test.wrapper().initialize_step(2, 2.0);
@@ -389,9 +385,7 @@ TEST(CalculixCcx, LoadsOnASectorHaveTheAnalyticTotals) {
   cylinder.extra_step_cards =
       "*NODE PRINT, NSET=SUPPORT, TOTALS=ONLY, GLOBAL=YES\nRF\n"
       "*NODE PRINT, NSET=INNERN, GLOBAL=NO\nRF\n";
-  test.create(cylinder.deck());
-  test.wrapper().initialize();
-  test.wrapper().initialize_step(1, 1.0);
+  test.start(cylinder.deck());
   const double p = 10e6, tau = 3e6;
   test.solve(p, Eigen::Vector3d(0, 0, tau));
   const auto dat = test.path("wall/cocopp_iteration.dat");
@@ -417,9 +411,7 @@ TEST(CalculixCcx, LoadsOnASectorHaveTheAnalyticTotals) {
 TEST(CalculixCcx, TractionIsRotatedIntoTheNodalSystems) {
   CalculixCase test;
   SectorCylinder cylinder;
-  test.create(cylinder.deck());
-  test.wrapper().initialize();
-  test.wrapper().initialize_step(1, 1.0);
+  test.start(cylinder.deck());
   const double p = 50e6;
   const Eigen::VectorXd by_pressure = test.radial(test.solve(p));
   Interface input = test.loads(0.0);
@@ -453,9 +445,7 @@ TEST(CalculixCcx, LoadsOnAnAxisymmetricModelHaveTheAnalyticTotals) {
            last_total_force(test.path("wall/cocopp_iteration.dat"), "SUPPORT").y();
   };
   CalculixCase bore;
-  bore.create(cylinder.deck());
-  bore.wrapper().initialize();
-  bore.wrapper().initialize_step(1, 1.0);
+  bore.start(cylinder.deck());
   const double tau = 3e6;
   bore.solve(0.0, Eigen::Vector3d(0, tau, 0));
   const double on_bore = tau * cylinder.inner_area();
@@ -467,9 +457,7 @@ TEST(CalculixCcx, LoadsOnAnAxisymmetricModelHaveTheAnalyticTotals) {
   EXPECT_NEAR(axial_reaction(bore), on_bore, 1e-6 * on_bore) << "after a restart";
 
   CalculixCase end;
-  end.create(cylinder.deck(), "", "TOP", "TOPN");
-  end.wrapper().initialize();
-  end.wrapper().initialize_step(1, 1.0);
+  end.start(cylinder.deck(), "", "TOP", "TOPN");
   const double q = 5e6;
   const double on_end = q * kPi * (cylinder.ro * cylinder.ro - cylinder.ri * cylinder.ri);
   end.solve(0.0, Eigen::Vector3d(0, -q, 0));
@@ -480,16 +468,14 @@ TEST(CalculixCcx, LoadsOnAnAxisymmetricModelHaveTheAnalyticTotals) {
 
 // On the axisymmetric model a radial traction p e_r on the bore deforms it like the pressure p:
 // the wrapper's ring weights (2 pi r) for the *CLOAD agree with ccx's own integration of the
-// *DLOAD, to 2e-5 (measured 7.6e-6): ccx spreads both over the 2 degree wedge of flat-sided
-// elements it expands the model into, whose faces are chords (1 - sin(1°)/1° = 5e-5 shorter
-// than the arc), the pressure by the faces' own shape functions.
+// *DLOAD, to 2e-5 (measured 7.6e-6): ccx integrates the pressure over the flat faces of the
+// 2 degree wedge it expands the model into (chords: 1 - sin(1°)/1° = 5e-5 short of the arc),
+// not over the ring.
 TEST(CalculixCcx, RadialTractionOnAnAxisymmetricModelActsLikeThePressure) {
   CalculixCase test;
   SectorCylinder cylinder;
   cylinder.element_type = "CAX8";
-  test.create(cylinder.deck());
-  test.wrapper().initialize();
-  test.wrapper().initialize_step(1, 1.0);
+  test.start(cylinder.deck());
   const double p = 50e6;
   const Eigen::VectorXd by_pressure = test.radial(test.solve(p));
   const Eigen::VectorXd by_traction = test.radial(test.solve(0.0, Eigen::Vector3d(p, 0, 0)));
@@ -504,9 +490,7 @@ TEST(CalculixCcx, PlaneStrainStripHasTheAnalyticResponseAndTotals) {
   CalculixCase test;
   testing::PlaneStrainStrip strip;
   strip.extra_step_cards = "*NODE PRINT, NSET=BOTTOM, TOTALS=ONLY\nRF\n";
-  test.create(strip.deck(), "", "TOP", "TOPN");
-  test.wrapper().initialize();
-  test.wrapper().initialize_step(1, 1.0);
+  test.start(strip.deck(), "", "TOP", "TOPN");
   const auto dat = test.path("wall/cocopp_iteration.dat");
   const double p = 20e6, tau = 5e6;
   const RowMatrix u = test.solve(p);
@@ -523,9 +507,7 @@ TEST(CalculixCcx, DeckErrorQuotesCcx) {
   CalculixCase test;
   SectorCylinder cylinder;
   cylinder.extra_step_cards = "*BOUNDARY\nNOSUCHSET, 1, 1\n";
-  test.create(cylinder.deck());
-  test.wrapper().initialize();
-  test.wrapper().initialize_step(1, 1.0);
+  test.start(cylinder.deck());
   const std::string message = testing::error_message<SolverError>([&] { test.solve(1e6); });
   EXPECT_CONTAINS(message, "ccx rejected the input deck at time step 1, coupling iteration 1");
   EXPECT_CONTAINS(message, "cocopp_iteration.inp (built from wall.inp)");
@@ -537,9 +519,7 @@ TEST(CalculixCcx, NonConvergenceNamesTheTimeStepAndIteration) {
   CalculixCase test;
   SectorCylinder cylinder;
   cylinder.yield_stress = kYield;
-  test.create(cylinder.deck());
-  test.wrapper().initialize();
-  test.wrapper().initialize_step(1, 1.0);
+  test.start(cylinder.deck());
   test.solve(0.5 * cylinder.yield_onset_pressure());
   test.wrapper().finalize_step();
   test.wrapper().initialize_step(2, 2.0);
