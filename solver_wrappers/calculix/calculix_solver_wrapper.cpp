@@ -48,24 +48,27 @@ std::string default_executable() {
   return "ccx";
 }
 
-/// The first element that ccx integrates with reduced integration (2D, shell and beam elements
-/// are expanded to C3D8R or C3D20R), or null.
-const std::pair<const std::int64_t, calculix::Element>* reduced_integration_element(
-    const calculix::InputDeck& deck) {
-  static const std::set<std::string> reduced = {"C3D8R", "C3D20R", "CPS4R", "CPE4R",
-                                                "CPS8R", "CPE8R",  "CAX4R", "CAX8R",
-                                                "S4R",   "S8R",    "B31R",  "B32R"};
+using DeckElement = std::pair<const std::int64_t, calculix::Element>;
+
+/// The deck's first element (by number) whose type satisfies `is`, or null.
+template <class Predicate>
+const DeckElement* first_element(const calculix::InputDeck& deck, Predicate is) {
   for (const auto& element : deck.elements())
-    if (reduced.count(element.second.type) != 0) return &element;
+    if (is(element.second.type)) return &element;
   return nullptr;
 }
 
-/// The first axisymmetric (CAX*) element, or null.
-const std::pair<const std::int64_t, calculix::Element>* axisymmetric_element(
-    const calculix::InputDeck& deck) {
-  for (const auto& element : deck.elements())
-    if (element.second.type.rfind("CAX", 0) == 0) return &element;
-  return nullptr;
+/// Whether ccx integrates this element type with reduced integration (2D, shell and beam
+/// elements are expanded to C3D8R or C3D20R).
+bool is_reduced_integration(const std::string& type) {
+  static const std::set<std::string> reduced = {"C3D8R", "C3D20R", "CPS4R", "CPE4R",
+                                                "CPS8R", "CPE8R",  "CAX4R", "CAX8R",
+                                                "S4R",   "S8R",    "B31R",  "B32R"};
+  return reduced.count(type) != 0;
+}
+
+bool is_axisymmetric(const std::string& type) {
+  return type.rfind("CAX", 0) == 0;
 }
 
 }  // namespace
@@ -177,7 +180,7 @@ void CalculixSolverWrapper::read_deck() {
 void CalculixSolverWrapper::choose_state_reset() {
   state_reset_ = state_reset_key_ == "replay" ? StateReset::kReplay : StateReset::kRestart;
   const bool history = has_material_history(*deck_);
-  const auto* axisymmetric = axisymmetric_element(*deck_);
+  const auto* axisymmetric = first_element(*deck_, is_axisymmetric);
   if (state_reset_ == StateReset::kReplay || (!history && axisymmetric == nullptr)) return;
   const auto support = calculix::restart_support(ccx_path_, working_directory_);
   const bool crashes = axisymmetric != nullptr && !support.axisymmetry;
@@ -203,7 +206,7 @@ void CalculixSolverWrapper::choose_state_reset() {
 // mismatch repeat every step, and it grows without bound (docs/solver-wrappers-calculix.md).
 void CalculixSolverWrapper::check_dynamic_elements() const {
   if (deck_->procedure() != "DYNAMIC" || allow_reduced_integration_) return;
-  if (const auto* element = reduced_integration_element(*deck_))
+  if (const auto* element = first_element(*deck_, is_reduced_integration))
     throw calculix::DeckError(fmt::format(
         "{}: element {} is a {} (reduced integration) in a *DYNAMIC deck: ccx 2.20 computes "
         "the acceleration at the start of each step with full integration, and over a series "
