@@ -19,6 +19,17 @@ namespace cocopp::testing {
 
 inline constexpr double kPi = 3.14159265358979323846;
 
+/// An 8-node quadrilateral (CPE8, CAX8, ...) on a doubled grid of node ids id(i, j), with its
+/// lower-left corner at (i, j): corners counter-clockwise, then the mid-side nodes.
+template <class Id>
+std::string quad8_nodes(const Id& id, int i, int j) {
+  std::ostringstream out;
+  out << id(i, j) << ", " << id(i + 2, j) << ", " << id(i + 2, j + 2) << ", " << id(i, j + 2)
+      << ", " << id(i + 1, j) << ", " << id(i + 2, j + 1) << ", " << id(i + 1, j + 2) << ", "
+      << id(i, j + 1);
+  return out.str();
+}
+
 struct SectorCylinder {
   double ri = 0.01;
   double ro = 0.02;
@@ -139,15 +150,10 @@ struct SectorCylinder {
       for (int i = 0; i < ni; ++i)
         if ((i % 2) + (k % 2) <= 1)
           out << id(i, k) << ", " << radius(i) << ", " << length * k / (nk - 1) << ", 0.\n";
-    // CAX8: corners counter-clockwise in the x-y plane, then the mid-side nodes.
     out << "*ELEMENT, TYPE=" << element_type << ", ELSET=EALL\n";
     for (int q = 0; q < axial; ++q)
-      for (int m = 0; m < radial; ++m) {
-        const int i = 2 * m, k = 2 * q;
-        out << 1 + m + radial * q << ", " << id(i, k) << ", " << id(i + 2, k) << ", "
-            << id(i + 2, k + 2) << ", " << id(i, k + 2) << ", " << id(i + 1, k) << ", "
-            << id(i + 2, k + 1) << ", " << id(i + 1, k + 2) << ", " << id(i, k + 1) << "\n";
-      }
+      for (int m = 0; m < radial; ++m)
+        out << 1 + m + radial * q << ", " << quad8_nodes(id, 2 * m, 2 * q) << "\n";
     out << "*NSET, NSET=INNERN\n";
     for (int k = 0; k < nk; ++k) out << id(0, k) << ",\n";
     out << "*NSET, NSET=SUPPORT\n" << id(ni - 1, 0) << ",\n";
@@ -208,12 +214,8 @@ struct PlaneStrainStrip {
           out << id(i, j) << ", " << lx * i / (ni - 1) << ", " << ly * j / (nj - 1) << "\n";
     out << "*ELEMENT, TYPE=CPE8, ELSET=EALL\n";
     for (int n = 0; n < ny; ++n)
-      for (int m = 0; m < nx; ++m) {
-        const int i = 2 * m, j = 2 * n;
-        out << 1 + m + nx * n << ", " << id(i, j) << ", " << id(i + 2, j) << ", "
-            << id(i + 2, j + 2) << ", " << id(i, j + 2) << ", " << id(i + 1, j) << ", "
-            << id(i + 2, j + 1) << ", " << id(i + 1, j + 2) << ", " << id(i, j + 1) << "\n";
-      }
+      for (int m = 0; m < nx; ++m)
+        out << 1 + m + nx * n << ", " << quad8_nodes(id, 2 * m, 2 * n) << "\n";
     out << "*NSET, NSET=TOPN\n";
     for (int i = 0; i < ni; ++i) out << id(i, nj - 1) << ",\n";
     out << "*NSET, NSET=BOTTOM\n";
