@@ -5,9 +5,9 @@
 #include <memory>
 #include <string>
 
-#include "coupler/case/settings.hpp"
+#include "core/case/settings.hpp"
 #include "solver_wrappers/calculix/calculix_solver_wrapper.hpp"
-#include "tests/unit/protocol/test_helpers.hpp"
+#include "tests/support/temporary_directory.hpp"
 
 namespace cocopp::bench {
 

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "coupler/case/settings.hpp"
+#include "core/case/settings.hpp"
 #include "mappers/interpolators/interpolator.hpp"
 
 namespace {

@@ -20,7 +20,7 @@
 #include <regex>
 #include <sstream>
 
-#include "coupler/case/settings.hpp"
+#include "core/case/settings.hpp"
 #include "solver_wrappers/solver_wrapper.hpp"
 
 namespace fs = std::filesystem;

@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "solver_wrappers/protocol/messages.hpp"
-#include "solver_wrappers/protocol/transport.hpp"
+#include "core/protocol/messages.hpp"
+#include "core/protocol/transport.hpp"
 #include "solver_wrappers/sdk/solver_sdk.hpp"
 
 namespace {

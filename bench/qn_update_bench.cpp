@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "coupler/case/settings.hpp"
+#include "core/case/settings.hpp"
 #include "coupler/coupled_solvers/models/model.hpp"
 
 namespace {

@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <string>
 
-#include "coupler/case/registry.hpp"
-#include "coupler/data/interface.hpp"
+#include "core/case/registry.hpp"
+#include "core/data/interface.hpp"
 
 namespace cocopp {
 

@@ -16,10 +16,10 @@
 #include <string>
 #include <vector>
 
+#include "core/case/settings.hpp"
 #include "coupler/app/bench_inputs.hpp"
 #include "coupler/app/case.hpp"
 #include "coupler/app/run.hpp"
-#include "coupler/case/settings.hpp"
 
 namespace cocopp {
 
@@ -627,8 +627,16 @@ std::string quote(const std::string& text) {
   return quoted + "'";
 }
 
+/// The plot script is installed next to the executable's tree (<prefix>/share/cocopp), in the
+/// build tree and in an install alike: an installed cocopp never reaches into the sources.
+fs::path plot_script() {
+  std::error_code error;
+  const fs::path executable = fs::read_symlink("/proc/self/exe", error);
+  return executable.parent_path().parent_path() / "share" / "cocopp" / "plot_bench.py";
+}
+
 void plot(const BenchFile& bench) {
-  const fs::path script = fs::path(COCOPP_SOURCE_DIR) / "scripts" / "plot_bench.py";
+  const fs::path script = plot_script();
   const std::string command = fmt::format("/usr/bin/python3 {} {} -o {}", quote(script.string()),
                                           quote((bench.output_directory / "bench.json").string()),
                                           quote((bench.output_directory / "bench.png").string()));

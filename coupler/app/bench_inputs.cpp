@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <fstream>
 
+#include "core/case/settings.hpp"
+#include "core/case/suggest.hpp"
 #include "coupler/app/case.hpp"
-#include "coupler/case/settings.hpp"
-#include "coupler/case/suggest.hpp"
 
 namespace cocopp {
 

@@ -4,7 +4,7 @@
 #include <memory>
 #include <vector>
 
-#include "coupler/case/settings.hpp"
+#include "core/case/settings.hpp"
 #include "coupler/coupled_solvers/coupled_solver.hpp"
 #include "solver_wrappers/solver_wrapper.hpp"
 

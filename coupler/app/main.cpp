@@ -4,30 +4,8 @@
 #include <CLI/CLI.hpp>
 
 #include "coupler/app/bench.hpp"
+#include "coupler/app/components.hpp"
 #include "coupler/app/run.hpp"
-#include "coupler/case/suggest.hpp"
-#include "coupler/convergence/convergence_criterion.hpp"
-#include "coupler/coupled_solvers/coupled_solver.hpp"
-#include "coupler/coupled_solvers/models/model.hpp"
-#include "coupler/predictors/predictor.hpp"
-#include "solver_wrappers/solver_wrapper.hpp"
-
-namespace {
-
-void print_components() {
-  using namespace cocopp;
-  fmt::print("coupled solvers (coupled_solver.type): {}\n",
-             join(CoupledSolverRegistry::instance().names()));
-  fmt::print("models (coupled_solver.model.type): {}\n", join(ModelRegistry::instance().names()));
-  fmt::print("predictors (coupled_solver.predictor.type): {}\n",
-             join(PredictorRegistry::instance().names()));
-  fmt::print("convergence criteria (coupled_solver.convergence_criterion.type): {}\n",
-             join(ConvergenceCriterionRegistry::instance().names()));
-  fmt::print("solver wrappers (solver_wrappers[].type): {}\n",
-             join(SolverWrapperRegistry::instance().names()));
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -88,6 +66,6 @@ int main(int argc, char** argv) {
     bench_options.plot = !no_plot;
     return cocopp::run_bench(bench_file, bench_options);
   }
-  print_components();
+  cocopp::print_components();
   return 0;
 }

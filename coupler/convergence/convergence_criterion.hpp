@@ -3,7 +3,7 @@
 #include <Eigen/Core>
 #include <string>
 
-#include "coupler/case/registry.hpp"
+#include "core/case/registry.hpp"
 
 namespace cocopp {
 

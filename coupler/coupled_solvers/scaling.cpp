@@ -5,7 +5,7 @@
 #include <cmath>
 #include <set>
 
-#include "coupler/case/suggest.hpp"
+#include "core/case/suggest.hpp"
 
 namespace cocopp {
 

@@ -19,8 +19,8 @@
 #include <string>
 #include <vector>
 
-#include "coupler/case/settings.hpp"
-#include "coupler/data/interface.hpp"
+#include "core/case/settings.hpp"
+#include "core/data/interface.hpp"
 #include "coupler/results/state.hpp"
 
 namespace cocopp {

@@ -4,7 +4,7 @@
 #include <Eigen/Core>
 #include <deque>
 
-#include "coupler/case/registry.hpp"
+#include "core/case/registry.hpp"
 
 namespace cocopp {
 

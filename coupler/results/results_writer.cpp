@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "coupler/data/variables.hpp"
+#include "core/data/variables.hpp"
 
 #ifndef COCOPP_VERSION
 #define COCOPP_VERSION "unknown"  // set from PROJECT_VERSION in coupler/CMakeLists.txt

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "coupler/data/interface.hpp"
+#include "core/data/interface.hpp"
 #include "coupler/results/hdf5_support.hpp"
 #include "coupler/results/step_record.hpp"
 

@@ -10,7 +10,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "coupler/case/suggest.hpp"
+#include "core/case/suggest.hpp"
 #include "mappers/interpolators/parallel.hpp"
 
 namespace cocopp {

@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "coupler/case/registry.hpp"
-#include "coupler/data/interface.hpp"
-#include "coupler/data/model_part.hpp"
+#include "core/case/registry.hpp"
+#include "core/data/interface.hpp"
+#include "core/data/model_part.hpp"
 #include "mappers/interpolators/point_search.hpp"
 
 namespace cocopp {

@@ -9,9 +9,9 @@
 // points, averaging where several transformed points stand for one real point).
 #include <Eigen/Core>
 
-#include "coupler/case/registry.hpp"
-#include "coupler/data/interface.hpp"
-#include "coupler/data/model_part.hpp"
+#include "core/case/registry.hpp"
+#include "core/data/interface.hpp"
+#include "core/data/model_part.hpp"
 
 namespace cocopp {
 

@@ -9,7 +9,7 @@
 #include <set>
 #include <utility>
 
-#include "coupler/case/suggest.hpp"
+#include "core/case/suggest.hpp"
 #include "solver_wrappers/calculix/ccx_run.hpp"
 #include "solver_wrappers/calculix/dat_file.hpp"
 #include "solver_wrappers/process/child_process.hpp"

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "coupler/data/interface.hpp"
+#include "core/data/interface.hpp"
 
 namespace cocopp::calculix {
 

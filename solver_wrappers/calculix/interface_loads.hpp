@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "coupler/data/interface.hpp"
+#include "core/data/interface.hpp"
 #include "solver_wrappers/calculix/element_faces.hpp"
 #include "solver_wrappers/calculix/input_deck.hpp"
 

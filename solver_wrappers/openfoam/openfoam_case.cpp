@@ -8,7 +8,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "coupler/case/suggest.hpp"
+#include "core/case/suggest.hpp"
 
 namespace cocopp::openfoam {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "coupler/case/settings.hpp"
+#include "core/case/settings.hpp"
 
 namespace cocopp::openfoam {
 

@@ -11,11 +11,11 @@
 
 #include <set>
 
-#include "coupler/case/suggest.hpp"
+#include "core/case/suggest.hpp"
+#include "core/protocol/transport.hpp"
 #include "solver_wrappers/openfoam/openfoam_case.hpp"
 #include "solver_wrappers/process/child_process.hpp"
 #include "solver_wrappers/process/process_solver_wrapper.hpp"
-#include "solver_wrappers/protocol/transport.hpp"
 #include "solver_wrappers/solver_error.hpp"
 
 namespace cocopp {

@@ -6,7 +6,7 @@
 #include <chrono>
 #include <cstdlib>
 
-#include "coupler/case/suggest.hpp"
+#include "core/case/suggest.hpp"
 #include "solver_wrappers/process/child_process.hpp"
 #include "solver_wrappers/solver_error.hpp"
 

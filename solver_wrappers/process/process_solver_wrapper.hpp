@@ -17,9 +17,9 @@
 #include <string>
 #include <vector>
 
-#include "solver_wrappers/protocol/frame.hpp"
-#include "solver_wrappers/protocol/messages.hpp"
-#include "solver_wrappers/protocol/transport.hpp"
+#include "core/protocol/frame.hpp"
+#include "core/protocol/messages.hpp"
+#include "core/protocol/transport.hpp"
 #include "solver_wrappers/solver_wrapper.hpp"
 
 namespace cocopp {

@@ -9,9 +9,9 @@
 #include <set>
 #include <stdexcept>
 
-#include "solver_wrappers/protocol/messages.hpp"
-#include "solver_wrappers/protocol/transport.hpp"
-#include "solver_wrappers/protocol/variable_components.hpp"
+#include "core/protocol/messages.hpp"
+#include "core/protocol/transport.hpp"
+#include "core/protocol/variable_components.hpp"
 
 namespace cocopp::sdk {
 

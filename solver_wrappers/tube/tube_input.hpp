@@ -1,13 +1,13 @@
 #pragma once
 // What the three tube solvers share when reading their own YAML input files: the geometry and
 // output keys, and pi. The files themselves are read with cocopp::Settings
-// (coupler/case/settings.hpp): every read records its key, Settings::check_unused_keys() then
+// (core/case/settings.hpp): every read records its key, Settings::check_unused_keys() then
 // reports keys nobody asked for, and all errors are cocopp::CaseError
 // "file:line:col: 'key.path': message".
 #include <Eigen/Dense>
 #include <string>
 
-#include "coupler/case/settings.hpp"
+#include "core/case/settings.hpp"
 
 namespace cocopp::tube {
 

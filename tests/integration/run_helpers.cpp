@@ -1,4 +1,4 @@
-#include "run_helpers.hpp"
+#include "tests/integration/run_helpers.hpp"
 
 #include <gtest/gtest.h>
 #include <hdf5.h>

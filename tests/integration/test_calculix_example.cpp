@@ -9,7 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "run_helpers.hpp"
+#include "tests/integration/run_helpers.hpp"
 
 using namespace cocopp::testing;
 namespace fs = std::filesystem;

@@ -3,7 +3,7 @@
 // behaviour is noticed and explained (update the value in the same commit, saying why).
 #include <gtest/gtest.h>
 
-#include "run_helpers.hpp"
+#include "tests/integration/run_helpers.hpp"
 
 using namespace cocopp::testing;
 namespace fs = std::filesystem;

@@ -5,7 +5,7 @@
 
 #include <fstream>
 
-#include "run_helpers.hpp"
+#include "tests/integration/run_helpers.hpp"
 
 using namespace cocopp::testing;
 namespace fs = std::filesystem;

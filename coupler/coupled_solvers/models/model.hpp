@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "coupler/case/registry.hpp"
+#include "core/case/registry.hpp"
 #include "coupler/results/state.hpp"
 
 namespace cocopp {

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "coupler/case/settings.hpp"
+#include "core/case/settings.hpp"
 #include "coupler/coupled_solvers/models/linear_combination.hpp"
 
 namespace cocopp {

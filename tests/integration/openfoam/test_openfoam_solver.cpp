@@ -9,7 +9,7 @@
 
 #include "solver_wrappers/process/process_solver_wrapper.hpp"
 #include "solver_wrappers/solver_error.hpp"
-#include "tests/unit/protocol/test_helpers.hpp"
+#include "tests/support/temporary_directory.hpp"
 
 namespace cocopp {
 namespace {

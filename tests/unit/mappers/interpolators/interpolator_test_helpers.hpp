@@ -8,7 +8,7 @@
 #include <random>
 #include <string>
 
-#include "coupler/case/settings.hpp"
+#include "core/case/settings.hpp"
 #include "mappers/interpolators/interpolator.hpp"
 
 namespace cocopp::testing {

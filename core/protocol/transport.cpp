@@ -1,0 +1,59 @@
+#include "core/protocol/transport.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/protocol/file_transport.hpp"
+#include "core/protocol/pipe_transport.hpp"
+
+namespace cocopp::protocol {
+
+TransportKind parse_transport_kind(const std::string& name) {
+  if (name == "pipe") return TransportKind::kPipe;
+  if (name == "file") return TransportKind::kFile;
+  throw std::invalid_argument("unknown transport '" + name + "' (use pipe or file)");
+}
+
+std::string transport_name(TransportKind kind) {
+  return kind == TransportKind::kPipe ? "pipe" : "file";
+}
+
+std::unique_ptr<Transport> create_coupler_channel(TransportKind kind,
+                                                  const std::filesystem::path& directory) {
+  if (kind == TransportKind::kPipe) return PipeTransport::create_for_coupler(directory);
+  return FileTransport::create_for_coupler(directory);
+}
+
+std::unique_ptr<Transport> open_solver_channel(TransportKind kind,
+                                               const std::filesystem::path& directory,
+                                               double timeout_seconds,
+                                               const AliveCheck& still_alive_check) {
+  if (kind == TransportKind::kPipe)
+    return PipeTransport::open_for_solver(directory, timeout_seconds, still_alive_check);
+  return FileTransport::open_for_solver(directory);
+}
+
+Deadline::Deadline(double seconds) : forever_(!std::isfinite(seconds)) {
+  if (!forever_)
+    end_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                              std::chrono::duration<double>(std::max(seconds, 0.0)));
+}
+
+bool Deadline::expired() const {
+  return !forever_ && Clock::now() >= end_;
+}
+
+std::chrono::milliseconds Deadline::next_slice() const {
+  if (forever_) return kAliveCheckInterval;
+  const auto remaining = std::chrono::ceil<std::chrono::milliseconds>(end_ - Clock::now());
+  return std::clamp(remaining, std::chrono::milliseconds(0), kAliveCheckInterval);
+}
+
+std::string seconds_text(double seconds) {
+  std::ostringstream out;
+  out << seconds << " s";
+  return out.str();
+}
+
+}  // namespace cocopp::protocol

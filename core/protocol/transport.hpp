@@ -1,0 +1,102 @@
+#pragma once
+// Transports carry frames between the coupler and one solver. Both ends use the same classes;
+// which end is which only matters when the channel is set up:
+//
+//   coupler: create_coupler_channel() -> launch the solver -> connect() -> receive HELLO ...
+//   solver:  open_solver_channel()    -> send HELLO -> receive requests ...
+//
+// Every wait has a timeout and calls a still-alive check at least every 100 ms: the coupler's
+// check throws when the solver process has died, so a crashed solver never leaves the coupler
+// waiting for a message that cannot come.
+#include <chrono>
+#include <filesystem>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "core/protocol/frame.hpp"
+
+namespace cocopp::protocol {
+
+/// Called while waiting; throws to abort the wait (its exception propagates unchanged).
+using AliveCheck = std::function<void()>;
+
+constexpr double kWaitForever = std::numeric_limits<double>::infinity();
+/// Longest time between two calls of the alive check.
+constexpr std::chrono::milliseconds kAliveCheckInterval{100};
+
+/// Environment variables through which the coupler tells a solver where its channel is.
+constexpr const char* kTransportVariable = "COCOPP_TRANSPORT";  ///< "pipe" or "file"
+constexpr const char* kChannelVariable = "COCOPP_CHANNEL";      ///< absolute directory
+
+/// The channel cannot be used (I/O error, missing FIFO, ...).
+class TransportError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Nothing arrived (or could be sent) within the timeout.
+class TransportTimeout : public TransportError {
+ public:
+  using TransportError::TransportError;
+};
+
+/// The other side closed its end: it exited or crashed.
+class PeerClosed : public TransportError {
+ public:
+  using TransportError::TransportError;
+};
+
+enum class TransportKind { kPipe, kFile };
+
+/// "pipe" or "file"; throws std::invalid_argument otherwise.
+TransportKind parse_transport_kind(const std::string& name);
+std::string transport_name(TransportKind kind);
+
+class Transport {
+ public:
+  virtual ~Transport() = default;
+
+  /// Coupler side, after launching the solver: wait until the solver has opened its end.
+  virtual void connect(double timeout_seconds, const AliveCheck& still_alive_check) = 0;
+
+  virtual void send(const Frame& frame, double timeout_seconds,
+                    const AliveCheck& still_alive_check) = 0;
+  void send(const Frame& frame) { send(frame, kWaitForever, nullptr); }
+
+  /// The next frame; throws TransportTimeout, PeerClosed, ProtocolError (corrupt frame).
+  virtual Frame receive(double timeout_seconds, const AliveCheck& still_alive_check) = 0;
+};
+
+/// Coupler side, before launching the solver: create the channel in `directory` (the FIFOs,
+/// or nothing but a cleanup of stale message files). The returned transport removes what it
+/// created when it is destroyed.
+std::unique_ptr<Transport> create_coupler_channel(TransportKind kind,
+                                                  const std::filesystem::path& directory);
+
+/// Solver side: open the channel the coupler created in `directory`.
+std::unique_ptr<Transport> open_solver_channel(TransportKind kind,
+                                               const std::filesystem::path& directory,
+                                               double timeout_seconds,
+                                               const AliveCheck& still_alive_check);
+
+/// A point in time `seconds` from now (never, for infinity).
+class Deadline {
+ public:
+  explicit Deadline(double seconds);
+  bool expired() const;
+  /// Time to wait before the next alive check: min(remaining, kAliveCheckInterval).
+  std::chrono::milliseconds next_slice() const;
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  bool forever_;
+  Clock::time_point end_;
+};
+
+/// "0.5 s", "600 s": timeouts in messages.
+std::string seconds_text(double seconds);
+
+}  // namespace cocopp::protocol

@@ -1,0 +1,27 @@
+// `absolute_norm`: ||r_k|| < tolerance.
+#include <fmt/format.h>
+
+#include "coupler/convergence/norm_criterion.hpp"
+
+namespace cocopp {
+namespace {
+
+class AbsoluteNorm : public NormCriterion {
+ public:
+  using NormCriterion::NormCriterion;
+  void initialize_step() override { last_ = -1.0; }
+  void update(const Eigen::VectorXd& r) override { last_ = norm(r); }
+  bool is_satisfied() const override { return last_ >= 0.0 && last_ < tolerance_; }
+  std::string describe() const override {
+    return fmt::format("absolute_norm({}) < {:g}", order_, tolerance_);
+  }
+
+ private:
+  double last_ = -1.0;
+};
+
+}  // namespace
+
+COCOPP_REGISTER(ConvergenceCriterionRegistry, "absolute_norm", AbsoluteNorm)
+
+}  // namespace cocopp

@@ -1,0 +1,37 @@
+// `relative_norm`: ||r_k|| / ||r_1|| < tolerance, with r_1 the first residual of the time step.
+// A first residual of exactly zero means the prediction already solves the step: that counts
+// as converged.
+#include <fmt/format.h>
+
+#include "coupler/convergence/norm_criterion.hpp"
+
+namespace cocopp {
+namespace {
+
+class RelativeNorm : public NormCriterion {
+ public:
+  using NormCriterion::NormCriterion;
+  void initialize_step() override { first_ = last_ = -1.0; }
+  void update(const Eigen::VectorXd& r) override {
+    last_ = norm(r);
+    if (first_ < 0.0) first_ = last_;
+  }
+  bool is_satisfied() const override {
+    if (last_ < 0.0) return false;
+    if (first_ == 0.0) return true;
+    return last_ / first_ < tolerance_;
+  }
+  std::string describe() const override {
+    return fmt::format("relative_norm({}) < {:g}", order_, tolerance_);
+  }
+
+ private:
+  double first_ = -1.0;
+  double last_ = -1.0;
+};
+
+}  // namespace
+
+COCOPP_REGISTER(ConvergenceCriterionRegistry, "relative_norm", RelativeNorm)
+
+}  // namespace cocopp

@@ -1,0 +1,123 @@
+// Case-file settings: values, defaults, and errors that name the file, line and key.
+#include <gtest/gtest.h>
+
+#include "core/case/settings.hpp"
+#include "core/case/suggest.hpp"
+
+using cocopp::CaseError;
+using cocopp::Settings;
+
+namespace {
+
+/// The message of the CaseError `f` throws ("" if none).
+template <class F>
+std::string error_of(F f) {
+  try {
+    f();
+  } catch (const CaseError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+const char* kYaml = R"(settings:
+  delta_t: 0.001
+  number_of_timesteps: 10
+coupled_solver:
+  type: iqni
+  omega: fast
+  model:
+    type: ls
+    q: 10
+)";
+
+}  // namespace
+
+TEST(Settings, ReadsValuesAndDefaults) {
+  const Settings root = Settings::load_string(kYaml, "case.yaml");
+  const Settings run = root.child("settings");
+  EXPECT_DOUBLE_EQ(run.required<double>("delta_t"), 0.001);
+  EXPECT_EQ(run.required<int>("number_of_timesteps"), 10);
+  EXPECT_EQ(run.get<int>("timestep_start", 7), 7);
+  EXPECT_EQ(root.child("coupled_solver").child("model").get<int>("q", 0), 10);
+  EXPECT_EQ(root.child("coupled_solver").path(), "coupled_solver");
+}
+
+TEST(Settings, WrongTypeNamesFileLineAndKey) {
+  const Settings root = Settings::load_string(kYaml, "case.yaml");
+  const std::string message =
+      error_of([&] { root.child("coupled_solver").get<double>("omega", 0.1); });
+  EXPECT_NE(message.find("case.yaml:6:"), std::string::npos) << message;
+  EXPECT_NE(message.find("'coupled_solver.omega'"), std::string::npos) << message;
+  EXPECT_NE(message.find("expected a number, got 'fast'"), std::string::npos) << message;
+}
+
+TEST(Settings, MissingRequiredKeyNamesTheSection) {
+  const Settings root = Settings::load_string(kYaml, "case.yaml");
+  const std::string message = error_of([&] { root.child("settings").required<double>("end"); });
+  EXPECT_NE(message.find("case.yaml:2:"), std::string::npos) << message;
+  EXPECT_NE(message.find("missing required key 'settings.end'"), std::string::npos) << message;
+}
+
+TEST(Settings, OutOfRangeValue) {
+  const Settings root = Settings::load_string(kYaml, "case.yaml");
+  const std::string message = error_of(
+      [&] { root.child("settings").required_in_range("delta_t", cocopp::Range::at_least(0.01)); });
+  EXPECT_NE(message.find("case.yaml:2:"), std::string::npos) << message;
+  EXPECT_NE(message.find("must be >= 0.01"), std::string::npos) << message;
+}
+
+TEST(Settings, UnknownKeySuggestsTheNearestValidOne) {
+  const Settings root =
+      Settings::load_string("settings:\n  delta_t: 1\n  number_of_timestep: 3\n", "case.yaml");
+  const Settings run = root.child("settings");
+  run.required<double>("delta_t");
+  run.get<int>("number_of_timesteps", 1);
+  const std::string message = error_of([&] { root.check_unused_keys(); });
+  EXPECT_NE(message.find("case.yaml:3:3: unknown key 'settings.number_of_timestep'"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("did you mean 'number_of_timesteps'?"), std::string::npos) << message;
+}
+
+TEST(Settings, UnreadSectionIsUnknown) {
+  const Settings root = Settings::load_string("settings: {}\nextra: {a: 1}\n", "case.yaml");
+  root.child("settings");
+  EXPECT_NE(error_of([&] { root.check_unused_keys(); }).find("unknown key 'extra'"),
+            std::string::npos);
+}
+
+TEST(Settings, ChoiceSuggestsNearest) {
+  const Settings root = Settings::load_string("transport: pipes\n", "c.yaml");
+  const std::string message = error_of([&] {
+    root.get_choice("transport", "pipe", {"pipe", "file"});
+  });
+  EXPECT_NE(message.find("did you mean 'pipe'?"), std::string::npos) << message;
+}
+
+TEST(Settings, JsonIsReadWithLineNumbers) {
+  const Settings root =
+      Settings::load_string("{\n  \"settings\": {\n    \"delta_t\": \"x\"\n  }\n}\n", "case.json");
+  EXPECT_EQ(root.child("settings").path(), "settings");
+  const std::string message = error_of([&] { root.child("settings").required<double>("delta_t"); });
+  EXPECT_NE(message.find("case.json:3:"), std::string::npos) << message;
+}
+
+TEST(Settings, SyntaxErrorNamesTheLine) {
+  const std::string message =
+      error_of([] { Settings::load_string("a: 1\nb: [1, 2\nc: 3\n", "bad.yaml"); });
+  EXPECT_NE(message.find("bad.yaml:"), std::string::npos) << message;
+  EXPECT_NE(message.find("syntax error"), std::string::npos) << message;
+}
+
+TEST(Settings, NonFiniteNumbersAreRejected) {
+  const Settings root = Settings::load_string("omega: .nan\n", "c.yaml");
+  EXPECT_NE(error_of([&] { root.required<double>("omega"); }).find("finite"), std::string::npos);
+}
+
+TEST(Suggest, EditDistanceAndSuggestion) {
+  EXPECT_EQ(cocopp::edit_distance("kitten", "sitting"), 3u);
+  EXPECT_EQ(cocopp::did_you_mean("gaus_seidel", {"gauss_seidel", "iqni"}),
+            "; did you mean 'gauss_seidel'?");
+  EXPECT_EQ(cocopp::did_you_mean("zzzzzz", {"gauss_seidel", "iqni"}), "");
+}

@@ -1,0 +1,168 @@
+// Coupled solvers on an affine coupled problem with a known solution.
+#include <gtest/gtest.h>
+
+#include "coupler/coupled_solvers/coupled_solver.hpp"
+#include "tests/support/linear_solvers.hpp"
+
+using namespace cocopp;
+using cocopp::testing::AffineSolver;
+
+namespace {
+
+/// Flow y = A x + b and structure x = B y with B A = `coupling` (a symmetric matrix of chosen
+/// eigenvalues) so that Gauss-Seidel converges iff all |eigenvalues| < 1.
+struct Problem {
+  Problem(int n, double low, double high) : part(cocopp::testing::line_model_part(n)) {
+    const Eigen::MatrixXd q = Eigen::MatrixXd::Random(n, n).householderQr().householderQ();
+    const Eigen::VectorXd eigenvalues = Eigen::VectorXd::LinSpaced(n, low, high);
+    const Eigen::MatrixXd coupling = q * eigenvalues.asDiagonal() * q.transpose();
+    const Eigen::MatrixXd a = Eigen::MatrixXd::Identity(n, n) * 2.0;
+    const Eigen::MatrixXd b = coupling / 2.0;
+    const Eigen::VectorXd offset = Eigen::VectorXd::LinSpaced(n, 1.0, 2.0);
+    flow = std::make_unique<AffineSolver>("flow", part, "displacement", "pressure", a, offset);
+    structure = std::make_unique<AffineSolver>("structure", part, "pressure", "displacement", b,
+                                               Eigen::VectorXd::Zero(n));
+    solution = (Eigen::MatrixXd::Identity(n, n) - coupling).lu().solve(b * offset);
+  }
+  std::shared_ptr<const ModelPart> part;
+  std::unique_ptr<AffineSolver> flow, structure;
+  Eigen::VectorXd solution;  ///< radial displacement at the fixed point
+};
+
+std::unique_ptr<CoupledSolver> make(const std::string& type_and_settings,
+                                    int max_iterations = 100) {
+  const std::string yaml = type_and_settings +
+                           "\npredictor: {type: constant}\n"
+                           "convergence_criterion:\n  type: or\n  criteria:\n"
+                           "    - {type: absolute_norm, tolerance: 1e-10}\n"
+                           "    - {type: iteration_limit, maximum: " +
+                           std::to_string(max_iterations) + "}\n";
+  return CoupledSolverRegistry::instance().create(Settings::load_string(yaml, "case.yaml"));
+}
+
+/// Run one step and return its record; the radial displacement must equal the solution.
+StepRecord solve_one_step(CoupledSolver& coupled, Problem& problem) {
+  coupled.initialize(*problem.flow, *problem.structure);
+  StepRecord record = coupled.solve_step(1, 0.1);
+  const auto x = coupled.x().values("wall", "displacement");
+  EXPECT_LT((x.col(1) - problem.solution).norm(), 1e-8 * problem.solution.norm());
+  EXPECT_TRUE(record.converged);
+  return record;
+}
+
+}  // namespace
+
+TEST(CoupledSolvers, GaussSeidelConvergesOnAContraction) {
+  Problem problem(6, -0.5, 0.5);
+  auto coupled = make("type: gauss_seidel");
+  const StepRecord record = solve_one_step(*coupled, problem);
+  EXPECT_GT(record.iterations, 10);
+  EXPECT_EQ(record.residual_norms.size(), std::size_t(record.iterations));
+}
+
+TEST(CoupledSolvers, RelaxationAndAitkenConvergeWhereGaussSeidelDiverges) {
+  Problem problem(6, -3.0, -1.5);
+  solve_one_step(*make("type: relaxation\nomega: 0.3"), problem);
+  Problem again(6, -3.0, -1.5);
+  solve_one_step(*make("type: aitken\nomega_max: 0.3"), again);
+}
+
+TEST(CoupledSolvers, GaussSeidelDivergenceIsDetectedWithAdvice) {
+  Problem problem(6, -3.0, -1.5);
+  auto coupled = make("type: gauss_seidel");
+  coupled->initialize(*problem.flow, *problem.structure);
+  try {
+    coupled->solve_step(1, 0.1);
+    FAIL() << "no divergence reported";
+  } catch (const DivergenceError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("diverged in time step 1"), std::string::npos) << message;
+    EXPECT_NE(message.find("iqni"), std::string::npos) << message;
+  }
+}
+
+TEST(CoupledSolvers, IqnIlsSolvesALinearProblemInAtMostNPlusTwoIterations) {
+  const int n = 8;
+  Problem problem(n, -80.0, -1.2);  // strongly unstable for Gauss-Seidel
+  auto coupled = make("type: iqni\nomega: 0.01\nmodel: {type: ls}");
+  const StepRecord record = solve_one_step(*coupled, problem);
+  // n secant columns (from n + 1 evaluations) span the space; the next evaluation converges.
+  EXPECT_LE(record.iterations, n + 2);
+}
+
+TEST(CoupledSolvers, ExplicitMakesOnePassPerStep) {
+  Problem problem(4, -0.5, 0.5);
+  auto coupled = make("type: explicit");
+  coupled->initialize(*problem.flow, *problem.structure);
+  const StepRecord record = coupled->solve_step(1, 0.1);
+  EXPECT_EQ(record.iterations, 1);
+  EXPECT_EQ(problem.flow->calls, 1);
+  EXPECT_EQ(problem.structure->calls, 1);
+}
+
+TEST(CoupledSolvers, NonFiniteSolverOutputNamesTheSolver) {
+  Problem problem(4, -0.5, 0.5);
+  problem.flow->poison_at_call = 2;
+  auto coupled = make("type: aitken");
+  coupled->initialize(*problem.flow, *problem.structure);
+  try {
+    coupled->solve_step(3, 0.3);
+    FAIL() << "no error for NaN";
+  } catch (const DivergenceError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("solver 'flow' returned a non-finite pressure at model part 'wall', "
+                           "point 0"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("time step 3, coupling iteration 2"), std::string::npos) << message;
+  }
+}
+
+TEST(CoupledSolvers, MismatchedInterfacesAreReported) {
+  auto part = cocopp::testing::line_model_part(3);
+  auto other = cocopp::testing::line_model_part(4);
+  AffineSolver flow("flow", part, "displacement", "pressure", Eigen::MatrixXd::Identity(3, 3),
+                    Eigen::VectorXd::Zero(3));
+  AffineSolver structure("structure", other, "pressure", "displacement",
+                         Eigen::MatrixXd::Identity(4, 4), Eigen::VectorXd::Zero(4));
+  auto coupled = make("type: gauss_seidel");
+  try {
+    coupled->initialize(flow, structure);
+    FAIL() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("do not fit together"), std::string::npos) << e.what();
+  }
+}
+
+TEST(CoupledSolvers, TimingsAddUp) {
+  Problem problem(4, -0.5, 0.5);
+  auto coupled = make("type: gauss_seidel");
+  coupled->initialize(*problem.flow, *problem.structure);
+  const StepRecord record = coupled->solve_step(1, 0.1);
+  ASSERT_EQ(record.solver_times.size(), 2u);
+  EXPECT_NEAR(record.wall_time,
+              record.solver_times[0] + record.solver_times[1] + record.coupler_time, 1e-12);
+  EXPECT_GE(record.coupler_time, 0.0);
+}
+
+TEST(CoupledSolvers, SteadyResidualGrowthIsDetected) {
+  // Relaxation with omega 0.9 on eigenvalues -1.5 .. -1.4 multiplies the error by about -1.2
+  // per iteration: far from the growth factor within the iteration limit, but persistent.
+  Problem problem(4, -1.5, -1.4);
+  const std::string yaml =
+      "type: relaxation\nomega: 0.9\ndivergence: {factor: 1e12, growth_iterations: 10}\n"
+      "predictor: {type: constant}\n"
+      "convergence_criterion: {type: iteration_limit, maximum: 100}\n";
+  auto coupled = CoupledSolverRegistry::instance().create(Settings::load_string(yaml, "case.yaml"));
+  coupled->initialize(*problem.flow, *problem.structure);
+  try {
+    coupled->solve_step(1, 0.1);
+    FAIL() << "no divergence reported";
+  } catch (const DivergenceError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("grew in each of the last 10 iterations, more than doubling"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("in iteration 11"), std::string::npos) << message;
+  }
+}

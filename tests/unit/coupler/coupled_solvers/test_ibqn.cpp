@@ -1,0 +1,156 @@
+// ibqn (interface block quasi-Newton) and its GMRES on affine problems with known solutions.
+#include <gtest/gtest.h>
+
+#include "coupler/coupled_solvers/coupled_solver.hpp"
+#include "coupler/coupled_solvers/gmres.hpp"
+#include "tests/support/linear_solvers.hpp"
+
+using namespace cocopp;
+using cocopp::testing::AffineSolver;
+
+namespace {
+
+/// Flow y = A x + b and structure x = B y with a nonsymmetric A and B A = P diag(lambda) P^-1:
+/// Gauss-Seidel diverges when some |lambda| > 1, and neither Jacobian alone is the coupled
+/// one, so both secant models matter.
+struct Problem {
+  Problem(int n, double low, double high) : part(cocopp::testing::line_model_part(n)) {
+    std::srand(7);  // Eigen's Random uses rand(): the same problem in every run
+    const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(n, n);
+    const Eigen::MatrixXd p = identity + 0.3 * Eigen::MatrixXd::Random(n, n);
+    const Eigen::VectorXd eigenvalues = Eigen::VectorXd::LinSpaced(n, low, high);
+    const Eigen::MatrixXd coupling = p * eigenvalues.asDiagonal() * p.inverse();
+    const Eigen::MatrixXd a = 2.0 * identity + 0.5 * Eigen::MatrixXd::Random(n, n);
+    const Eigen::MatrixXd b = coupling * a.inverse();
+    const Eigen::VectorXd offset = Eigen::VectorXd::LinSpaced(n, 1.0, 2.0);
+    flow = std::make_unique<AffineSolver>("flow", part, "displacement", "pressure", a, offset);
+    structure = std::make_unique<AffineSolver>("structure", part, "pressure", "displacement", b,
+                                               Eigen::VectorXd::Zero(n));
+    solution = (identity - coupling).lu().solve(b * offset);
+  }
+  std::shared_ptr<const ModelPart> part;
+  std::unique_ptr<AffineSolver> flow, structure;
+  Eigen::VectorXd solution;  ///< radial displacement at the fixed point
+};
+
+const char* const kCommon =
+    "\npredictor: {type: constant}\n"
+    "convergence_criterion:\n  type: or\n  criteria:\n"
+    "    - {type: absolute_norm, tolerance: 1e-10}\n"
+    "    - {type: iteration_limit, maximum: 100}\n";
+
+std::unique_ptr<CoupledSolver> make(const std::string& type_and_settings) {
+  return CoupledSolverRegistry::instance().create(
+      Settings::load_string(type_and_settings + kCommon, "case.yaml"));
+}
+
+const char* const kIbqn = "type: ibqn\nmodel_f: {type: ls}\nmodel_s: {type: ls}";
+
+/// The CaseError message of building `yaml`, or "" if it builds.
+std::string case_error(const std::string& yaml) {
+  try {
+    make(yaml);
+  } catch (const CaseError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+/// A fixed nonsymmetric n x n matrix with eigenvalues away from zero.
+Eigen::MatrixXd nonsymmetric(int n) {
+  std::srand(11);
+  return 4.0 * Eigen::MatrixXd::Identity(n, n) + Eigen::MatrixXd::Random(n, n);
+}
+
+}  // namespace
+
+TEST(Ibqn, SolvesAnAffineProblemThatGaussSeidelCannot) {
+  const int n = 8;
+  Problem unstable(n, -80.0, -1.2);
+  auto gauss_seidel = make("type: gauss_seidel");
+  gauss_seidel->initialize(*unstable.flow, *unstable.structure);
+  EXPECT_THROW(gauss_seidel->solve_step(1, 0.1), DivergenceError);
+
+  Problem problem(n, -80.0, -1.2);
+  auto coupled = make(kIbqn);
+  coupled->initialize(*problem.flow, *problem.structure);
+  const StepRecord record = coupled->solve_step(1, 0.1);
+  const auto x = coupled->x().values("wall", "displacement");
+  EXPECT_LT((x.col(1) - problem.solution).norm(), 1e-8 * problem.solution.norm());
+  EXPECT_TRUE(record.converged);
+  // After n + 1 evaluations the n secant differences of x span the space, so S'F' is exact
+  // and the next evaluation lands on the solution: at most n + 2 iterations, as IQN-ILS.
+  EXPECT_LE(record.iterations, n + 2);
+}
+
+TEST(Ibqn, DescribesItsModels) {
+  auto coupled = make(
+      "type: ibqn\nomega: 0.05\nmodel_f: {type: ls, q: 10}\n"
+      "model_s: {type: ls, q: 10}");
+  EXPECT_NE(coupled->describe().find("ibqn (omega 0.05, model_f ls, model_s ls)"),
+            std::string::npos)
+      << coupled->describe();
+}
+
+TEST(Ibqn, MissingModelsAreCaseErrorsNamingTheKey) {
+  const std::string no_f = case_error("type: ibqn\nmodel_s: {type: ls}");
+  EXPECT_NE(no_f.find("missing required section 'model_f'"), std::string::npos) << no_f;
+  const std::string no_s = case_error("type: ibqn\nmodel_f: {type: ls}");
+  EXPECT_NE(no_s.find("missing required section 'model_s'"), std::string::npos) << no_s;
+}
+
+TEST(Ibqn, OutOfRangeSettingsAreCaseErrors) {
+  EXPECT_NE(case_error(std::string(kIbqn) + "\nomega: 3").find("omega"), std::string::npos);
+  EXPECT_NE(case_error(std::string(kIbqn) + "\ngmres: {tolerance: 0}").find("gmres.tolerance"),
+            std::string::npos);
+  EXPECT_NE(case_error(std::string(kIbqn) + "\ngmres: {maximum_iterations: 0}")
+                .find("gmres.maximum_iterations"),
+            std::string::npos);
+}
+
+TEST(Gmres, SolvesANonsymmetricSystemToItsTolerance) {
+  const int n = 30;
+  const Eigen::MatrixXd a = nonsymmetric(n);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+  auto apply = [&a](const Eigen::VectorXd& v) -> Eigen::VectorXd { return a * v; };
+  for (int restart : {50, 7}) {
+    const GmresResult result = gmres(apply, b, 1e-10, 200, restart);
+    EXPECT_TRUE(result.converged) << "restart " << restart;
+    EXPECT_LE((b - a * result.x).norm(), 1e-10 * b.norm()) << "restart " << restart;
+    EXPECT_NEAR(result.relative_residual, (b - a * result.x).norm() / b.norm(), 1e-14);
+  }
+  EXPECT_LE(gmres(apply, b, 1e-10, 200).iterations, n);
+}
+
+TEST(Gmres, NeedsRankPlusOneIterationsForIdentityMinusLowRank) {
+  const int n = 40;
+  std::srand(3);
+  const Eigen::MatrixXd u = Eigen::MatrixXd::Random(n, 3);
+  const Eigen::MatrixXd v = Eigen::MatrixXd::Random(n, 3);
+  const Eigen::MatrixXd a = Eigen::MatrixXd::Identity(n, n) - u * v.transpose();
+  const Eigen::VectorXd b = Eigen::VectorXd::Ones(n);
+  const GmresResult result =
+      gmres([&a](const Eigen::VectorXd& x) -> Eigen::VectorXd { return a * x; }, b, 1e-12, 100);
+  EXPECT_TRUE(result.converged);
+  EXPECT_LE(result.iterations, 4);
+  EXPECT_LE((b - a * result.x).norm(), 1e-12 * b.norm());
+}
+
+TEST(Gmres, ReportsWhenTheIterationLimitStopsIt) {
+  const Eigen::MatrixXd a = nonsymmetric(30);
+  const Eigen::VectorXd b = Eigen::VectorXd::Ones(30);
+  auto apply = [&a](const Eigen::VectorXd& v) -> Eigen::VectorXd { return a * v; };
+  const GmresResult result = gmres(apply, b, 1e-12, 3);
+  EXPECT_FALSE(result.converged);
+  EXPECT_EQ(result.iterations, 3);
+  EXPECT_LT(result.relative_residual, 1.0);  // still the best x of its Krylov space
+  EXPECT_NEAR(result.relative_residual, (b - a * result.x).norm() / b.norm(), 1e-14);
+}
+
+TEST(Gmres, ZeroRightHandSideGivesZero) {
+  const GmresResult result = gmres([](const Eigen::VectorXd& v) -> Eigen::VectorXd { return v; },
+                                   Eigen::VectorXd::Zero(5), 1e-8, 10);
+  EXPECT_TRUE(result.converged);
+  EXPECT_EQ(result.iterations, 0);
+  EXPECT_EQ(result.x, Eigen::VectorXd::Zero(5));
+}

@@ -1,0 +1,423 @@
+// ProcessSolverWrapper driving cocopp-test-solver (tests/support) end to end, over both
+// transports, and through each way a solver can fail.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+
+#include "core/protocol/pipe_transport.hpp"
+#include "solver_wrappers/process/process_solver_wrapper.hpp"
+#include "solver_wrappers/solver_error.hpp"
+#include "tests/support/error_message.hpp"
+#include "tests/support/temporary_directory.hpp"
+
+namespace cocopp {
+namespace {
+
+using testing::error_message;
+using testing::process_alive;
+using testing::read_text;
+using testing::TemporaryDirectory;
+using testing::write_text;
+using Clock = std::chrono::steady_clock;
+
+std::filesystem::path bin_directory() {
+  const char* directory = std::getenv("COCOPP_BIN_DIR");
+  return directory != nullptr ? directory : COCOPP_TEST_BIN_DIR;
+}
+
+std::unique_ptr<SolverWrapper> create(const std::string& yaml, const RunSettings& run) {
+  const Settings settings = Settings::load_string(yaml, "case.yaml");
+  auto wrapper = SolverWrapperRegistry::instance().create(settings, run);
+  settings.check_unused_keys();
+  return wrapper;
+}
+
+/// The message of the SolverError `action` throws (fails the test if it throws none).
+template <class Action>
+std::string solver_error_of(Action&& action) {
+  try {
+    action();
+  } catch (const SolverError& e) {
+    EXPECT_EQ(e.solver_name(), "flow");
+    return e.what();
+  }
+  ADD_FAILURE() << "no SolverError";
+  return "";
+}
+
+#define EXPECT_CONTAINS(text, part) \
+  EXPECT_NE(std::string(text).find(part), std::string::npos) << "in: " << (text)
+
+class ProcessSolverWrapperTest : public ::testing::TestWithParam<std::string> {
+ protected:
+  ProcessSolverWrapperTest() {
+    run_.delta_t = 0.01;
+    run_.timestep_start = 0;
+    run_.case_directory = directory_.path();
+    std::filesystem::create_directory(directory_ / "flow");
+  }
+
+  /// The test solver in working directory `flow`, with `input` as its input file.
+  ProcessSolverWrapper& start(const std::string& input, const std::string& extra_keys = "") {
+    write_text(directory_ / "flow/test_solver.in", input);
+    wrapper_ = create(
+        "type: process\n"
+        "name: flow\n"
+        "working_directory: flow\n"
+        "command: [" +
+            (bin_directory() / "cocopp-test-solver").string() +
+            ", test_solver.in]\n"
+            "transport: " +
+            GetParam() + "\n" + extra_keys,
+        run_);
+    auto& wrapper = dynamic_cast<ProcessSolverWrapper&>(*wrapper_);
+    return wrapper;
+  }
+
+  static void set_y_displacement(Interface& input, double value) {
+    auto displacement = input.values("wall", "displacement");
+    for (Eigen::Index i = 0; i < displacement.rows(); ++i) {
+      displacement(i, 0) = 0.5 * value;
+      displacement(i, 1) = value * (i + 1);
+      displacement(i, 2) = -value;
+    }
+  }
+
+  /// After any end of a solver: no process left, no channel files left.
+  void expect_cleaned_up(const ProcessSolverWrapper& wrapper) const {
+    EXPECT_GT(wrapper.child_pid(), 0);
+    EXPECT_FALSE(process_alive(wrapper.child_pid()));
+    for (const auto& entry : std::filesystem::directory_iterator(directory_ / "flow")) {
+      const std::string name = entry.path().filename().string();
+      EXPECT_TRUE(name == "test_solver.in" || name == "flow.log") << "left behind: " << name;
+    }
+  }
+
+  TemporaryDirectory directory_;
+  RunSettings run_;
+  std::unique_ptr<SolverWrapper> wrapper_;
+};
+
+TEST_P(ProcessSolverWrapperTest, RunsStepsAndStops) {
+  run_.timestep_start = 5;
+  auto& wrapper = start("points 5\n");
+  wrapper.initialize();
+  EXPECT_GT(wrapper.solver_pid(), 0);
+  EXPECT_EQ(wrapper.input_interface().describe(), "wall: displacement (5 x 3)");
+  EXPECT_EQ(wrapper.output_interface().describe(),
+            "wall: pressure (5 x 1); wall: traction (5 x 3)");
+  // One model part object behind both interfaces.
+  EXPECT_EQ(wrapper.input_interface().parts()[0].model_part,
+            wrapper.output_interface().parts()[0].model_part);
+  const auto& wall = *wrapper.input_interface().parts()[0].model_part;
+  EXPECT_EQ(wall.ids, (std::vector<std::int64_t>{1, 2, 3, 4, 5}));
+  EXPECT_DOUBLE_EQ(wall.coordinates(3, 0), 0.3);
+  EXPECT_DOUBLE_EQ(wall.coordinates(3, 1), 0.005);
+  // Initial output: pressure 100 + i + timestep_start, traction (delta_t, 0, 0).
+  EXPECT_EQ(wrapper.output_interface().values("wall", "pressure")(2, 0), 107.0);
+  EXPECT_EQ(wrapper.output_interface().values("wall", "traction")(4, 0), 0.01);
+
+  Interface input = wrapper.input_interface();
+  for (int step = 6; step <= 8; ++step) {
+    wrapper.initialize_step(step, step * run_.delta_t);
+    for (int iteration = 1; iteration <= 2; ++iteration) {
+      const double amplitude = 1e-4 * iteration;
+      set_y_displacement(input, amplitude);
+      const Interface& output = wrapper.solve(input);
+      const auto pressure = output.values("wall", "pressure");
+      const auto traction = output.values("wall", "traction");
+      for (Eigen::Index i = 0; i < 5; ++i) {
+        EXPECT_DOUBLE_EQ(pressure(i, 0), 1000.0 * amplitude * (i + 1) + step);
+        EXPECT_DOUBLE_EQ(traction(i, 1), 2.0 * amplitude * (i + 1));
+        EXPECT_DOUBLE_EQ(traction(i, 2), -2.0 * amplitude);
+      }
+    }
+    wrapper.finalize_step();
+    wrapper.output_step();
+  }
+  wrapper.finalize();
+  wrapper.finalize();  // twice is fine
+  expect_cleaned_up(wrapper);
+  const std::string log = read_text(directory_ / "flow/flow.log");
+  EXPECT_CONTAINS(log, "test solver: initialize, delta_t 0.01, timestep_start 5, 5 points");
+  EXPECT_CONTAINS(log, "test solver: step 8 iteration 2");
+  EXPECT_CONTAINS(log, "test solver: finalize");
+}
+
+TEST_P(ProcessSolverWrapperTest, NaNValuesArriveAsNaN) {
+  auto& wrapper = start("points 3\nfail nan\nfail_step 1\nfail_iteration 2\n");
+  wrapper.initialize();
+  Interface input = wrapper.input_interface();
+  wrapper.initialize_step(1, 0.01);
+  EXPECT_TRUE(wrapper.solve(input).data().allFinite());
+  const Interface& output = wrapper.solve(input);
+  EXPECT_TRUE(std::isnan(output.data()(0)));
+  EXPECT_TRUE(output.data().array().isNaN().all());
+  wrapper.finalize();
+  expect_cleaned_up(wrapper);
+}
+
+TEST_P(ProcessSolverWrapperTest, ACrashIsReportedWithItsSignalAndTheLogTail) {
+  auto& wrapper = start("fail crash\nfail_step 2\nfail_iteration 1\n");
+  wrapper.initialize();
+  Interface input = wrapper.input_interface();
+  wrapper.initialize_step(1, 0.01);
+  wrapper.solve(input);
+  wrapper.finalize_step();
+  wrapper.initialize_step(2, 0.02);
+  const std::string message = solver_error_of([&] { wrapper.solve(input); });
+  EXPECT_CONTAINS(message, "solver 'flow' (pid " + std::to_string(wrapper.child_pid()) + ")");
+  EXPECT_CONTAINS(message, "killed by signal 11 (Segmentation fault)");
+  EXPECT_CONTAINS(message, "during solve at step 2, iteration 1");
+  EXPECT_CONTAINS(message, (directory_ / "flow/flow.log").string());
+  EXPECT_CONTAINS(message, "test solver: failing (crash) at step 2 iteration 1");
+  expect_cleaned_up(wrapper);
+  EXPECT_NO_THROW(wrapper.finalize());
+  EXPECT_CONTAINS(solver_error_of([&] { wrapper.solve(input); }), "is not running");
+}
+
+TEST_P(ProcessSolverWrapperTest, AnExitCodeIsReported) {
+  auto& wrapper = start("fail exit\nfail_step 1\n");
+  wrapper.initialize();
+  wrapper.initialize_step(1, 0.01);
+  const std::string message = solver_error_of([&] { wrapper.solve(wrapper.input_interface()); });
+  EXPECT_CONTAINS(message, "exited with code 3 during solve at step 1, iteration 1");
+  expect_cleaned_up(wrapper);
+}
+
+TEST_P(ProcessSolverWrapperTest, AHangingSolverTimesOut) {
+  auto& wrapper = start("fail hang\nfail_step 1\n", "timeout: 0.5\n");
+  wrapper.initialize();
+  wrapper.initialize_step(1, 0.01);
+  const auto begin = Clock::now();
+  const std::string message = solver_error_of([&] { wrapper.solve(wrapper.input_interface()); });
+  EXPECT_LT(std::chrono::duration<double>(Clock::now() - begin).count(), 5.0);
+  EXPECT_CONTAINS(message, "solver 'flow' did not answer solve within 0.5 s (step 1, iteration 1)");
+  EXPECT_CONTAINS(message, "ends with:\n");
+  EXPECT_CONTAINS(message, "test solver: failing (hang) at step 1 iteration 1");
+  expect_cleaned_up(wrapper);
+}
+
+TEST_P(ProcessSolverWrapperTest, AReportedErrorIsRelayed) {
+  auto& wrapper = start("fail error\nfail_step 1\nfail_iteration 2\n");
+  wrapper.initialize();
+  wrapper.initialize_step(1, 0.01);
+  wrapper.solve(wrapper.input_interface());
+  const std::string message = solver_error_of([&] { wrapper.solve(wrapper.input_interface()); });
+  EXPECT_EQ(message.rfind("solver 'flow' reported an error: test solver: requested error at step "
+                          "1 iteration 2",
+                          0),
+            0u)
+      << message;
+  expect_cleaned_up(wrapper);
+}
+
+TEST_P(ProcessSolverWrapperTest, AnErrorDuringInitializeIsRelayed) {
+  auto& wrapper = start("points 2\nfail_mode error\n");
+  const std::string message = solver_error_of([&] { wrapper.initialize(); });
+  EXPECT_CONTAINS(message, "reported an error: test solver: ");
+  EXPECT_CONTAINS(message, "unknown key 'fail_mode'");
+  EXPECT_CONTAINS(message, "during initialize before the first step");
+  expect_cleaned_up(wrapper);
+}
+
+TEST_P(ProcessSolverWrapperTest, ACrashDuringInitializeIsReported) {
+  auto& wrapper = start("fail crash\nfail_step 0\n");
+  const std::string message = solver_error_of([&] { wrapper.initialize(); });
+  EXPECT_CONTAINS(message, "killed by signal 11 (Segmentation fault) during initialize");
+  expect_cleaned_up(wrapper);
+}
+
+TEST_P(ProcessSolverWrapperTest, TheDestructorStopsARunningSolver) {
+  auto& wrapper = start("points 2\n", "log_file: logs/flow.log\n");
+  wrapper.initialize();
+  wrapper.initialize_step(1, 0.01);
+  const int pid = wrapper.child_pid();
+  EXPECT_TRUE(process_alive(pid));
+  wrapper_.reset();
+  EXPECT_FALSE(process_alive(pid));
+  EXPECT_CONTAINS(read_text(directory_ / "flow/logs/flow.log"), "test solver: finalize");
+  EXPECT_FALSE(std::filesystem::exists(directory_ / "flow/to_solver_00000001.msg"));
+  EXPECT_FALSE(
+      std::filesystem::exists(directory_ / "flow" / protocol::PipeTransport::kToSolverFifo));
+}
+
+INSTANTIATE_TEST_SUITE_P(Transports, ProcessSolverWrapperTest, ::testing::Values("pipe", "file"),
+                         [](const auto& info) { return info.param; });
+
+class ProcessSolverWrapperSetupTest : public ::testing::Test {
+ protected:
+  ProcessSolverWrapperSetupTest() {
+    run_.case_directory = directory_.path();
+    std::filesystem::create_directory(directory_ / "flow");
+  }
+
+  std::unique_ptr<SolverWrapper> create_flow(const std::string& keys) {
+    return create("type: process\nname: flow\nworking_directory: flow\n" + keys, run_);
+  }
+
+  TemporaryDirectory directory_;
+  RunSettings run_;
+};
+
+TEST_F(ProcessSolverWrapperSetupTest, AMissingExecutableIsNamedByCheckAndInitialize) {
+  auto wrapper = create_flow("command: [./no_such_solver, input.txt]\n");
+  std::string message = error_message<CaseError>([&] { wrapper->check(); });
+  EXPECT_CONTAINS(message, "case.yaml:4:");
+  EXPECT_CONTAINS(message, "solver 'flow': executable " +
+                               (directory_ / "flow/no_such_solver").string() + " does not exist");
+  message = error_message<CaseError>([&] { wrapper->initialize(); });
+  EXPECT_CONTAINS(message, "no_such_solver");
+  EXPECT_NO_THROW(wrapper->finalize());
+
+  wrapper = create_flow("command: [no_such_solver_on_path]\n");
+  EXPECT_CONTAINS(error_message<CaseError>([&] { wrapper->check(); }),
+                  "executable 'no_such_solver_on_path' not found in " +
+                      (directory_ / "flow").string() + " or on PATH");
+}
+
+TEST_F(ProcessSolverWrapperSetupTest, AMissingWorkingDirectoryIsReported) {
+  auto wrapper =
+      create("type: process\nname: flow\nworking_directory: nowhere\ncommand: [sh]\n", run_);
+  EXPECT_CONTAINS(error_message<CaseError>([&] { wrapper->check(); }),
+                  "working directory " + (directory_ / "nowhere").string() + " does not exist");
+}
+
+TEST_F(ProcessSolverWrapperSetupTest, ASolverThatNeverConnectsTimesOut) {
+  auto wrapper = create_flow("command: [/bin/sleep, '30']\nstartup_timeout: 0.3\n");
+  auto& process = dynamic_cast<ProcessSolverWrapper&>(*wrapper);
+  const std::string message = solver_error_of([&] { wrapper->initialize(); });
+  EXPECT_CONTAINS(message, "solver 'flow' did not connect within 0.3 s (before the first step)");
+  EXPECT_FALSE(process_alive(process.child_pid()));
+  EXPECT_FALSE(
+      std::filesystem::exists(directory_ / "flow" / protocol::PipeTransport::kToSolverFifo));
+}
+
+TEST_F(ProcessSolverWrapperSetupTest, AProgramThatIsNoSolverIsReported) {
+  auto wrapper = create_flow("command: [/bin/sh, -c, 'echo I am no solver; exit 7']\n");
+  const std::string message = solver_error_of([&] { wrapper->initialize(); });
+  EXPECT_CONTAINS(message, "exited with code 7 during startup before the first step");
+  EXPECT_CONTAINS(message, "I am no solver");
+}
+
+TEST_F(ProcessSolverWrapperSetupTest, DefaultsAndPaths) {
+  auto wrapper = create_flow("command: [./solver]\n");
+  auto& process = dynamic_cast<ProcessSolverWrapper&>(*wrapper);
+  EXPECT_EQ(process.name(), "flow");
+  EXPECT_EQ(process.working_directory(), directory_ / "flow");
+  EXPECT_EQ(process.log_file(), directory_ / "flow/flow.log");
+  EXPECT_EQ(process.transport(), protocol::TransportKind::kPipe);
+  EXPECT_EQ(process.describe(), "flow: ./solver (in " + (directory_ / "flow").string() + "; log " +
+                                    (directory_ / "flow/flow.log").string() + "; pipe transport)");
+  auto unnamed = create(
+      "type: process\nworking_directory: flow\ncommand: [./solver]\n"
+      "log_file: logs/out.txt\n",
+      run_);
+  EXPECT_EQ(unnamed->name(), "process");
+  EXPECT_EQ(dynamic_cast<ProcessSolverWrapper&>(*unnamed).log_file(),
+            directory_ / "flow/logs/out.txt");
+}
+
+TEST_F(ProcessSolverWrapperSetupTest, SettingsAreValidatedWhenBuilt) {
+  EXPECT_CONTAINS(
+      error_message<CaseError>([&] { create_flow("command: [./s]\ntransport: pipes\n"); }),
+      "did you mean 'pipe'");
+  EXPECT_CONTAINS(error_message<CaseError>([&] { create_flow("command: [./s]\ntimeout: 0\n"); }),
+                  "'timeout': must be > 0");
+  EXPECT_CONTAINS(error_message<CaseError>([&] { create_flow(""); }),
+                  "missing required key 'command'");
+  EXPECT_CONTAINS(error_message<CaseError>([&] { create_flow("command: []\n"); }),
+                  "must start with the executable");
+  EXPECT_CONTAINS(error_message<CaseError>([&] { create_flow("command: [./s]\ntimout: 5\n"); }),
+                  "unknown key 'timout'; did you mean 'timeout'");
+  EXPECT_CONTAINS(error_message<CaseError>([&] { create_flow("command: [./s]\ninput_file: x\n"); }),
+                  "unknown key 'input_file'");
+}
+
+TEST_F(ProcessSolverWrapperSetupTest, BuiltinTubeSolversDefaultToTheBinDirectory) {
+  // Point COCOPP_BIN_DIR at a fake bin directory, so that this test does not depend on the
+  // tube executables.
+  TemporaryDirectory bin;
+  write_text(bin / "cocopp-tube-flow", "#!/bin/sh\n");
+  std::filesystem::permissions(bin / "cocopp-tube-flow", std::filesystem::perms::owner_all);
+  const char* saved = std::getenv("COCOPP_BIN_DIR");
+  const std::string saved_value = saved != nullptr ? saved : "";
+  ::setenv("COCOPP_BIN_DIR", bin.path().c_str(), 1);
+
+  const auto command_of = [&](const std::string& yaml) {
+    return dynamic_cast<ProcessSolverWrapper&>(*create(yaml, run_)).command();
+  };
+  EXPECT_EQ(command_of("type: tube_flow\nworking_directory: flow\n"),
+            (std::vector<std::string>{(bin / "cocopp-tube-flow").string(), "tube_flow.yaml"}));
+  EXPECT_EQ(command_of("type: tube_structure\nworking_directory: flow\ninput_file: s.yaml\n"),
+            (std::vector<std::string>{(bin / "cocopp-tube-structure").string(), "s.yaml"}));
+  EXPECT_EQ(command_of("type: tube_ringmodel\nworking_directory: flow\n")[1],
+            "tube_ringmodel.yaml");
+  EXPECT_EQ(command_of("type: tube_flow\nworking_directory: flow\ncommand: [./mine]\n"),
+            (std::vector<std::string>{"./mine"}));
+  EXPECT_CONTAINS(
+      error_message<CaseError>([&] {
+        create("type: tube_flow\nworking_directory: flow\ncommand: [a]\ninput_file: b\n", run_);
+      }),
+      "give either 'command' or 'input_file'");
+
+  auto flow = create("type: tube_flow\nworking_directory: flow\n", run_);
+  EXPECT_EQ(flow->name(), "tube_flow");
+  EXPECT_CONTAINS(
+      error_message<CaseError>([&] { flow->check(); }),
+      "input file " + (directory_ / "flow/tube_flow.yaml").string() + " does not exist");
+  write_text(directory_ / "flow/tube_flow.yaml", "");
+  EXPECT_NO_THROW(flow->check());
+  auto structure = create("type: tube_structure\nworking_directory: flow\n", run_);
+  EXPECT_CONTAINS(error_message<CaseError>([&] { structure->check(); }), "cocopp-tube-structure");
+
+  if (saved != nullptr)
+    ::setenv("COCOPP_BIN_DIR", saved_value.c_str(), 1);
+  else
+    ::unsetenv("COCOPP_BIN_DIR");
+}
+
+// The protocol from another language: tests/support/python_solver.py, the example of
+// docs/protocol.md, written without the SDK.
+TEST_F(ProcessSolverWrapperSetupTest, ASolverWrittenInPythonWorks) {
+  const std::filesystem::path script =
+      std::filesystem::path(COCOPP_TEST_SOURCE_DIR) / "tests/support/python_solver.py";
+  auto wrapper = create_flow("command: [/usr/bin/python3, " + script.string() + "]\n");
+  wrapper->initialize();
+  EXPECT_EQ(wrapper->input_interface().describe(), "wall: displacement (3 x 3)");
+  EXPECT_EQ(wrapper->output_interface().describe(), "wall: pressure (3 x 1)");
+  Interface input = wrapper->input_interface();
+  input.values("wall", "displacement")(2, 1) = 0.002;
+  for (int step = 1; step <= 2; ++step) {
+    wrapper->initialize_step(step, 0.1 * step);
+    const auto pressure = wrapper->solve(input).values("wall", "pressure");
+    EXPECT_DOUBLE_EQ(pressure(0, 0), step);
+    EXPECT_DOUBLE_EQ(pressure(2, 0), 2.0 + step);
+    wrapper->finalize_step();
+    wrapper->output_step();
+  }
+  wrapper->finalize();
+  auto& process = dynamic_cast<ProcessSolverWrapper&>(*wrapper);
+  EXPECT_FALSE(process_alive(process.child_pid()));
+}
+
+TEST(SolverExecutableTest, WithoutTheCouplerItSaysHowToRunIt) {
+  TemporaryDirectory directory;
+  const std::string solver = (bin_directory() / "cocopp-test-solver").string();
+  const std::string log = (directory / "out.txt").string();
+  const std::string environment = "env -u COCOPP_TRANSPORT -u COCOPP_CHANNEL ";
+  int status = std::system((environment + solver + " > " + log + " 2>&1").c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+  EXPECT_CONTAINS(read_text(log),
+                  "this program is a cocopp solver; run it through `cocopp run case.yaml`");
+  status = std::system((environment + solver + " --help > " + log + " 2>&1").c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  EXPECT_CONTAINS(read_text(log), "is a cocopp solver");
+}
+
+}  // namespace
+}  // namespace cocopp

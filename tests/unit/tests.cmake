@@ -1,0 +1,61 @@
+# The unit tests, folder by folder as the sources (included from tests/CMakeLists.txt).
+
+# core
+cocopp_unit_test(core/protocol SOURCES test_frame.cpp test_messages.cpp test_transport.cpp
+                 LIBS cocopp_protocol)
+cocopp_unit_test(core/case SOURCES test_settings.cpp test_registry.cpp LIBS cocopp_core)
+
+# mappers
+cocopp_unit_test(mappers/interpolators
+                 SOURCES test_interpolators.cpp test_interpolator_checks.cpp LIBS cocopp_mappers)
+cocopp_unit_test(mappers/transformers SOURCES test_transformers.cpp LIBS cocopp_mappers)
+
+# solver wrappers
+cocopp_unit_test(solver_wrappers/sdk SOURCES test_solver_sdk.cpp LIBS cocopp_sdk)
+cocopp_unit_test(solver_wrappers/process
+                 SOURCES test_child_process.cpp test_process_solver_wrapper.cpp
+                 LIBS cocopp_solver_wrappers DEPENDS cocopp-test-solver)
+cocopp_unit_test(solver_wrappers/mapped SOURCES test_mapped_solver_wrapper.cpp
+                 LIBS cocopp_solver_wrappers)
+# The OpenFOAM wrapper's coupler side (dictionary reading, case checks): no OpenFOAM needed.
+cocopp_unit_test(solver_wrappers/openfoam SOURCES test_openfoam_case.cpp
+                 LIBS cocopp_solver_wrappers)
+# The CalculiX wrapper: deck reading and loads without ccx; the ccx runs where ccx is
+# (COCOPP_HAVE_CALCULIX, found once in solver_wrappers/calculix).
+cocopp_unit_test(solver_wrappers/calculix SOURCES test_calculix_deck.cpp
+                 LIBS cocopp_solver_wrappers)
+if(COCOPP_HAVE_CALCULIX)
+  cocopp_unit_test(solver_wrappers/calculix SUFFIX ccx SOURCES test_calculix_ccx.cpp
+                   LIBS cocopp_solver_wrappers LABELS ccx)
+  if(COCOPP_HAVE_PATCHED_CCX)  # the restart of plastic models needs the patched ccx
+    target_compile_definitions(${COCOPP_LAST_TEST} PRIVATE COCOPP_HAVE_PATCHED_CCX=1)
+  endif()
+endif()
+cocopp_unit_test(solver_wrappers/tube
+  SOURCES test_banded_solver.cpp test_tube_input.cpp test_tube_flow.cpp test_tube_structure.cpp
+          test_tube_ringmodel.cpp test_tube_wave_speed.cpp
+  LIBS cocopp_tube_models)
+# The example input files are read from the source tree (also without ctest's environment).
+target_compile_definitions(${COCOPP_LAST_TEST} PRIVATE
+  COCOPP_TUBE_EXAMPLES_DIR="${PROJECT_SOURCE_DIR}/examples/tube")
+# Runs the executables, so building it builds them.
+cocopp_unit_test(solver_wrappers/tube SUFFIX executables SOURCES test_tube_executables.cpp
+  DEPENDS cocopp-tube-flow cocopp-tube-structure cocopp-tube-ringmodel)
+target_compile_definitions(${COCOPP_LAST_TEST} PRIVATE
+  COCOPP_TUBE_FLOW_EXECUTABLE="$<TARGET_FILE:cocopp-tube-flow>"
+  COCOPP_TUBE_STRUCTURE_EXECUTABLE="$<TARGET_FILE:cocopp-tube-structure>"
+  COCOPP_TUBE_RINGMODEL_EXECUTABLE="$<TARGET_FILE:cocopp-tube-ringmodel>")
+
+# coupler
+cocopp_unit_test(coupler/coupled_solvers
+  SOURCES test_coupled_solvers.cpp test_ibqn.cpp test_scaling.cpp test_state.cpp
+  LIBS cocopp_coupling)
+cocopp_unit_test(coupler/coupled_solvers/models
+  SOURCES test_ls.cpp test_multi_vector.cpp test_qr_factorization.cpp LIBS cocopp_coupling)
+cocopp_unit_test(coupler/convergence SOURCES test_convergence.cpp LIBS cocopp_coupling)
+cocopp_unit_test(coupler/predictors SOURCES test_predictors.cpp LIBS cocopp_coupling)
+# The HDF5 results file (read back with the C API and with h5py) and the JSON run summary.
+cocopp_unit_test(coupler/results
+  SOURCES test_results_writer.cpp test_run_summary.cpp test_results_python.cpp
+  LIBS cocopp_coupling)
+cocopp_unit_test(coupler/app SOURCES test_components.cpp LIBS cocopp_app)
