@@ -23,7 +23,8 @@ int main(int argc, char** argv) {
       "Run a case: start the solvers, march in time with the coupled solver, write "
       "<results_directory>/<name>.h5 (HDF5, docs/results.md) and <name>.summary.json. Prints "
       "one progress line per time step (a * marks a step accepted at the iteration limit) and "
-      "a timing summary. Exit code 0: completed; 1: the run stopped (divergence, solver "
+      "a timing summary. Exit code 0: completed (or stalled: some steps accepted at the iteration "
+      "limit); 1: the run stopped (divergence, solver "
       "failure, interrupt; results so far are kept); 2: invalid case file.");
   run->add_option("case", case_file, "case file (.yaml, .yml or .json)")
       ->required()
@@ -60,7 +61,7 @@ int main(int argc, char** argv) {
   app.add_subcommand("components", "List the component types a case file can name.");
 
   CLI11_PARSE(app, argc, argv);
-  if (*run) return cocopp::run_case(case_file, options);
+  if (*run) return cocopp::run_case(case_file, options).outcome.exit_code();
   if (*check) return cocopp::check_case(case_file);
   if (*bench) {
     bench_options.plot = !no_plot;

@@ -59,34 +59,38 @@ void print_progress(const StepRecord& r, int last_step) {
   std::fflush(stdout);
 }
 
-/// What stopped the run, for the results file, the summary and the exit code.
-struct Outcome {
-  std::string status = "completed";
-  std::string message;
-};
-
 class Run {
  public:
   explicit Run(Case& c) : case_(c), summary_(describe_run(c)) {}
 
-  Outcome execute(const RunOptions& options) {
-    Outcome outcome;
+  RunOutcome execute(const RunOptions& options) {
+    RunOutcome outcome;
     try {
       march(options);
+      outcome = went_through();
     } catch (const DivergenceError& e) {
-      outcome = {"diverged", e.what()};
+      outcome = stopped(RunStatus::kDiverged, e.what());
+      outcome.divergence = e.kind;
+      outcome.step = e.step;
+      outcome.iteration = e.iteration;
+      outcome.reason =
+          fmt::format("{} in step {}, iteration {}", to_string(e.kind), e.step, e.iteration);
     } catch (const SolverError& e) {
-      outcome = {"solver_failed", e.what()};
+      outcome = stopped(RunStatus::kSolverFailed, e.what());
     } catch (const std::exception& e) {
-      outcome = {"failed", e.what()};
+      outcome = stopped(RunStatus::kFailed, e.what());
     }
     if (interrupt_signal != 0)
-      outcome = {"interrupted", fmt::format("interrupted by signal {} ({})",
-                                            interrupt_signal.load(), strsignal(interrupt_signal))};
+      outcome = stopped(RunStatus::kInterrupted,
+                        fmt::format("interrupted by signal {} ({})", interrupt_signal.load(),
+                                    strsignal(interrupt_signal)));
     stop_solvers(outcome);
     finish(outcome);
     return outcome;
   }
+
+  const RunSummary& summary() const { return summary_; }
+  std::filesystem::path results_file() const { return results_path(".h5"); }
 
  private:
   void march(const RunOptions& options) {
@@ -99,6 +103,7 @@ class Run {
     const int first = case_.run.timestep_start + 1;
     const int last = case_.run.timestep_start + case_.run.number_of_timesteps;
     for (int step = first; step <= last; ++step) {
+      current_step_ = step;
       const StepRecord record = coupled.solve_step(step, step * case_.run.delta_t);
       writer_->write_step(record, coupled.x(), coupled.y());
       summary_.add_step(record);
@@ -111,6 +116,43 @@ class Run {
         save_state(step);
     }
     save_state(last);
+    current_step_ = 0;
+  }
+
+  /// Every step computed: completed, or stalled if some were accepted at the iteration limit.
+  RunOutcome went_through() const {
+    RunOutcome outcome;
+    const auto& unconverged = summary_.unconverged_steps();
+    if (unconverged.empty()) return outcome;
+    outcome.status = RunStatus::kStalled;
+    outcome.reason = fmt::format("{} of {} steps at the iteration limit", unconverged.size(),
+                                 summary_.steps_completed());
+    return outcome;
+  }
+
+  /// A run that stopped in the step it was computing (or before the first, or after the last).
+  RunOutcome stopped(RunStatus status, const std::string& message) const {
+    RunOutcome outcome;
+    outcome.status = status;
+    outcome.message = message;
+    outcome.step = current_step_;
+    const std::string where =
+        current_step_ > 0
+            ? fmt::format("in step {}", current_step_)
+            : (summary_.steps_completed() > 0 ? "after the last step" : "at start-up");
+    outcome.reason = fmt::format("{} {}", status_text(status), where);
+    return outcome;
+  }
+
+  static const char* status_text(RunStatus status) {
+    switch (status) {
+      case RunStatus::kSolverFailed:
+        return "solver failure";
+      case RunStatus::kInterrupted:
+        return "interrupted";
+      default:
+        return "error";
+    }
   }
 
   /// The first few steps' warnings as they come; all of them go to the summary.
@@ -137,12 +179,12 @@ class Run {
     state_saved_ = true;
   }
 
-  void stop_solvers(Outcome& outcome) {
+  void stop_solvers(RunOutcome& outcome) {
     for (auto& solver : case_.solvers) {
       try {
         solver->finalize();
       } catch (const std::exception& e) {
-        if (outcome.status == "completed") outcome = {"solver_failed", e.what()};
+        if (ran_all_steps(outcome.status)) outcome = stopped(RunStatus::kSolverFailed, e.what());
       }
     }
   }
@@ -151,18 +193,17 @@ class Run {
     return case_.results_directory / (case_.results_name + extension);
   }
 
-  void finish(const Outcome& outcome) {
+  void finish(const RunOutcome& outcome) {
     const double wall = std::chrono::duration<double>(Clock::now() - start_).count();
     const auto& solver_times = case_.coupled_solver->solver_time_total();
     const double coupler = wall - solver_times[0] - solver_times[1];
-    if (writer_) writer_->close(outcome.status, outcome.message);
-    summary_.finish(outcome.status == "completed", outcome.status, outcome.message, wall,
-                    {solver_times[0], solver_times[1]}, coupler);
+    if (writer_) writer_->close(to_string(outcome.status), outcome.message);
+    summary_.finish(outcome, wall, {solver_times[0], solver_times[1]}, coupler);
     summary_.write(results_path(".summary.json"));
 
     const int steps = writer_ ? writer_->steps_written() : 0;
-    fmt::print("\n{} after {} time step{} in {:.3f} s\n", outcome.status, steps,
-               steps == 1 ? "" : "s", wall);
+    fmt::print("\n{} after {} time step{} in {:.3f} s{}\n", to_string(outcome.status), steps,
+               steps == 1 ? "" : "s", wall, outcome.reason.empty() ? "" : ": " + outcome.reason);
     auto line = [](const std::string& label, const std::string& text) {
       fmt::print("  {:<18}: {}\n", label, text);
     };
@@ -177,7 +218,7 @@ class Run {
     if (state_saved_) line("solver state", results_path(".state.h5").string());
     line("summary", results_path(".summary.json").string());
     std::fflush(stdout);  // the error comes last, after the summary, also when piped
-    if (outcome.status != "completed") fmt::print(stderr, "\nerror: {}\n", outcome.message);
+    if (!outcome.message.empty()) fmt::print(stderr, "\nerror: {}\n", outcome.message);
   }
 
   Case& case_;
@@ -188,25 +229,33 @@ class Run {
   double algorithm_time_ = 0.0;
   bool state_saved_ = false;
   int steps_with_warnings_ = 0;
+  int current_step_ = 0;  ///< the step being computed; 0 outside the time loop
 };
 
 }  // namespace
 
-int run_case(const std::filesystem::path& case_file, const RunOptions& options) {
+RunReport run_case(const std::filesystem::path& case_file, const RunOptions& options) {
+  RunReport report;
   Case c;
   try {
     c = load_case(case_file);
     for (const auto& solver : c.solvers) solver->check();
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
-    return 2;
+    report.outcome.status = RunStatus::kInvalidCase;
+    report.outcome.message = e.what();
+    report.outcome.reason = "invalid case";
+    return report;
   }
   print_header(c);
   std::signal(SIGINT, on_interrupt);
   std::signal(SIGTERM, on_interrupt);
   std::signal(SIGHUP, on_interrupt);
-  const Outcome outcome = Run(c).execute(options);
-  return outcome.status == "completed" ? 0 : 1;
+  Run run(c);
+  report.outcome = run.execute(options);
+  report.summary = run.summary();
+  report.results_file = run.results_file();
+  return report;
 }
 
 int check_case(const std::filesystem::path& case_file) {

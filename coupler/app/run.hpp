@@ -1,6 +1,10 @@
 #pragma once
 // `cocopp run`: build a case, start its solvers, march in time, write results.
 #include <filesystem>
+#include <optional>
+
+#include "coupler/results/run_outcome.hpp"
+#include "coupler/results/run_summary.hpp"
 
 namespace cocopp {
 
@@ -8,9 +12,17 @@ struct RunOptions {
   bool quiet = false;  ///< no progress lines (header and summary are still printed)
 };
 
-/// Run a case file. Returns the process exit code: 0 completed, 1 the run stopped (diverged,
-/// solver failed, interrupted), 2 the case file is invalid.
-int run_case(const std::filesystem::path& case_file, const RunOptions& options);
+/// What a run of a case gives its caller (the command, cocopp bench): how it ended and its
+/// summary, without reading its files back.
+struct RunReport {
+  RunOutcome outcome;
+  std::optional<RunSummary> summary;   ///< absent when the case never started (invalid case)
+  std::filesystem::path results_file;  ///< <results_directory>/<name>.h5 (absent if never started)
+};
+
+/// Run a case file: print the header, one progress line per step and the summary, write the
+/// results. outcome.exit_code() is the process exit code.
+RunReport run_case(const std::filesystem::path& case_file, const RunOptions& options);
 
 /// `cocopp check`: build and validate a case without starting any solver.
 int check_case(const std::filesystem::path& case_file);

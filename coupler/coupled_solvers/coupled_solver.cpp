@@ -166,11 +166,12 @@ void CoupledSolver::check_finite(const Interface& data, const SolverWrapper& sol
     const auto values = data.values(block.model_part, block.variable);
     for (Eigen::Index point = 0; point < values.rows(); ++point)
       if (!values.row(point).allFinite())
-        throw DivergenceError(fmt::format(
-            "solver '{}' returned a non-finite {} at model part '{}', point {} (of {}), in time "
-            "step {}, coupling iteration {}. {}",
-            solver.name(), block.variable, block.model_part, point, values.rows(), step, iteration,
-            divergence_advice()));
+        throw DivergenceError(DivergenceKind::kNonFinite, step, iteration,
+                              fmt::format("solver '{}' returned a non-finite {} at model part "
+                                          "'{}', point {} (of {}), in time step {}, coupling "
+                                          "iteration {}. {}",
+                                          solver.name(), block.variable, block.model_part, point,
+                                          values.rows(), step, iteration, divergence_advice()));
   }
 }
 
@@ -178,12 +179,15 @@ void CoupledSolver::check_divergence(const std::vector<double>& norms, int step,
                                      double time) const {
   const double first = norms.front();
   const double last = norms.back();
+  const int iteration = static_cast<int>(norms.size());
   if (!std::isfinite(last) || (first > 0.0 && last > divergence_factor_ * first))
-    throw DivergenceError(fmt::format(
-        "the coupling diverged in time step {} (t = {:g} s): the residual norm grew from {:.3e} "
-        "in iteration 1 to {:.3e} in iteration {} (more than coupled_solver.divergence.factor = "
-        "{:g} times). {}",
-        step, time, first, last, norms.size(), divergence_factor_, divergence_advice()));
+    throw DivergenceError(
+        std::isfinite(last) ? DivergenceKind::kGrowth : DivergenceKind::kNonFinite, step, iteration,
+        fmt::format("the coupling diverged in time step {} (t = {:g} s): the residual norm grew "
+                    "from {:.3e} in iteration 1 to {:.3e} in iteration {} (more than "
+                    "coupled_solver.divergence.factor = {:g} times). {}",
+                    step, time, first, last, norms.size(), divergence_factor_,
+                    divergence_advice()));
   // A slow but steady growth never reaches the factor before the iteration limit: catch it by
   // its persistence (converging methods grow at most a few iterations in a row).
   const auto n = static_cast<std::size_t>(growth_iterations_);
@@ -192,11 +196,12 @@ void CoupledSolver::check_divergence(const std::vector<double>& norms, int step,
     if (!(norms[i] > norms[i - 1])) return;
   // A stalled iteration creeping up at round-off level is not diverging: ask for a doubling.
   if (!(last > 2.0 * norms[norms.size() - 1 - n])) return;
-  throw DivergenceError(fmt::format(
-      "the coupling diverged in time step {} (t = {:g} s): the residual norm grew in each of the "
-      "last {} iterations, more than doubling, to {:.3e} in iteration {} "
-      "(coupled_solver.divergence.growth_iterations = {}). {}",
-      step, time, n, last, norms.size(), n, divergence_advice()));
+  throw DivergenceError(
+      DivergenceKind::kGrowth, step, iteration,
+      fmt::format("the coupling diverged in time step {} (t = {:g} s): the residual norm grew in "
+                  "each of the last {} iterations, more than doubling, to {:.3e} in iteration {} "
+                  "(coupled_solver.divergence.growth_iterations = {}). {}",
+                  step, time, n, last, norms.size(), n, divergence_advice()));
 }
 
 void CoupledSolver::save_state(State& state) const {

@@ -13,17 +13,22 @@
 
 #include "coupler/convergence/convergence_criterion.hpp"
 #include "coupler/predictors/predictor.hpp"
+#include "coupler/results/run_outcome.hpp"
 #include "coupler/results/state.hpp"
 #include "coupler/results/step_record.hpp"
 #include "solver_wrappers/solver_wrapper.hpp"
 
 namespace cocopp {
 
-/// The coupling diverged (residual growth or non-finite data); the message says where and what
-/// to change.
+/// The coupling diverged (residual growth or non-finite data) in a step and iteration; the
+/// message says where and what to change.
 class DivergenceError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  DivergenceError(DivergenceKind kind, int step, int iteration, const std::string& message)
+      : std::runtime_error(message), kind(kind), step(step), iteration(iteration) {}
+  DivergenceKind kind;
+  int step;
+  int iteration;
 };
 
 class CoupledSolver {

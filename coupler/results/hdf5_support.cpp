@@ -127,4 +127,87 @@ std::string object_name(hid_t object) {
   return name;
 }
 
+std::vector<std::string> member_names(hid_t group) {
+  H5G_info_t info;
+  checked(H5Gget_info(group, &info), "H5Gget_info");
+  std::vector<std::string> names;
+  for (hsize_t i = 0; i < info.nlinks; ++i) {
+    const ssize_t length = checked(
+        H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT),
+        "H5Lget_name_by_idx");
+    std::string name(std::size_t(length), '\0');
+    checked(H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(),
+                               name.size() + 1, H5P_DEFAULT),
+            "H5Lget_name_by_idx");
+    names.push_back(std::move(name));
+  }
+  return names;
+}
+
+std::vector<hsize_t> dataset_shape(hid_t dataset) {
+  const H5Handle space(checked(H5Dget_space(dataset), "H5Dget_space"), H5Sclose);
+  const int rank = checked(H5Sget_simple_extent_ndims(space.get()), "H5Sget_simple_extent_ndims");
+  std::vector<hsize_t> dims(std::size_t(rank), 0);
+  if (rank > 0)
+    checked(H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr),
+            "H5Sget_simple_extent_dims");
+  return dims;
+}
+
+std::size_t element_count(hid_t dataset) {
+  const H5Handle space(checked(H5Dget_space(dataset), "H5Dget_space"), H5Sclose);
+  return std::size_t(
+      checked(H5Sget_simple_extent_npoints(space.get()), "H5Sget_simple_extent_npoints"));
+}
+
+std::vector<double> read_doubles(hid_t dataset) {
+  std::vector<double> values(element_count(dataset));
+  if (!values.empty())
+    checked(H5Dread(dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
+            "reading " + object_name(dataset));
+  return values;
+}
+
+namespace {
+
+H5Handle open_attribute(hid_t location, const std::string& object, const std::string& name) {
+  return {checked(H5Aopen_by_name(location, object.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT),
+                  "opening attribute " + object + "@" + name),
+          H5Aclose};
+}
+
+std::size_t attribute_count(hid_t attribute) {
+  const H5Handle space(checked(H5Aget_space(attribute), "H5Aget_space"), H5Sclose);
+  return std::size_t(
+      checked(H5Sget_simple_extent_npoints(space.get()), "H5Sget_simple_extent_npoints"));
+}
+
+}  // namespace
+
+std::vector<double> read_doubles_attribute(hid_t location, const std::string& object,
+                                           const std::string& name) {
+  const H5Handle attribute = open_attribute(location, object, name);
+  std::vector<double> values(attribute_count(attribute.get()));
+  if (!values.empty())
+    checked(H5Aread(attribute.get(), H5T_NATIVE_DOUBLE, values.data()),
+            "reading attribute " + object + "@" + name);
+  return values;
+}
+
+std::vector<std::string> read_strings_attribute(hid_t location, const std::string& object,
+                                                const std::string& name) {
+  const H5Handle attribute = open_attribute(location, object, name);
+  const H5Handle type = string_type();
+  std::vector<char*> pointers(attribute_count(attribute.get()), nullptr);
+  if (!pointers.empty())
+    checked(H5Aread(attribute.get(), type.get(), pointers.data()),
+            "reading attribute " + object + "@" + name);
+  std::vector<std::string> values;
+  for (char* text : pointers) {
+    values.emplace_back(text ? text : "");
+    H5free_memory(text);
+  }
+  return values;
+}
+
 }  // namespace cocopp::hdf5

@@ -113,5 +113,25 @@ void write_fixed(hid_t parent, const std::string& name, hid_t file_type, hid_t m
 
 std::string object_name(hid_t object);
 
+// Reading (ResultsReader, the state file). Each call is checked and throws H5Error.
+
+/// The names of the links in a group, in name order.
+std::vector<std::string> member_names(hid_t group);
+
+std::vector<hsize_t> dataset_shape(hid_t dataset);
+
+std::size_t element_count(hid_t dataset);
+
+/// All values of a numeric dataset in C order, converted to double.
+std::vector<double> read_doubles(hid_t dataset);
+
+/// A numeric attribute (scalar or array) of `object` (a path from `location`), as doubles.
+std::vector<double> read_doubles_attribute(hid_t location, const std::string& object,
+                                           const std::string& name);
+
+/// A string attribute (scalar or array) of `object` (a path from `location`).
+std::vector<std::string> read_strings_attribute(hid_t location, const std::string& object,
+                                                const std::string& name);
+
 }  // namespace hdf5
 }  // namespace cocopp

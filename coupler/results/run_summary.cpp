@@ -5,6 +5,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <system_error>
@@ -83,13 +84,11 @@ void RunSummary::add_step(const StepRecord& record) {
   for (std::size_t i = 0; i < solver_times_.size(); ++i) solver_times_[i] += record.solver_times[i];
 }
 
-void RunSummary::finish(bool completed, const std::string& status, const std::string& message,
-                        double total_wall_time, const std::vector<double>& total_solver_times,
-                        double total_coupler_time) {
+void RunSummary::finish(const RunOutcome& outcome, double total_wall_time,
+                        const std::vector<double>& total_solver_times, double total_coupler_time) {
   check_solver_times(total_solver_times, "finish");
-  completed_ = completed;
-  status_ = status;
-  message_ = message;
+  finished_ = true;
+  outcome_ = outcome;
   wall_time_ = total_wall_time;
   solver_times_ = total_solver_times;
   coupler_time_ = total_coupler_time;
@@ -107,8 +106,17 @@ json RunSummary::solver_times_json() const {
   return out;
 }
 
+long RunSummary::total_iterations() const {
+  return std::accumulate(iterations_.begin(), iterations_.end(), 0L);
+}
+
+double RunSummary::average_iterations() const {
+  return steps_.empty() ? std::numeric_limits<double>::quiet_NaN()
+                        : static_cast<double>(total_iterations()) / steps_.size();
+}
+
 json RunSummary::to_json() const {
-  const long total_iterations = std::accumulate(iterations_.begin(), iterations_.end(), 0L);
+  const long total_iterations = this->total_iterations();
   const auto steps = static_cast<double>(steps_.size());
   json out;
   out["cocopp_version"] = COCOPP_VERSION;
@@ -118,9 +126,16 @@ json RunSummary::to_json() const {
   out["delta_t"] = run_.delta_t;
   out["timestep_start"] = run_.timestep_start;
   out["number_of_timesteps"] = run_.number_of_timesteps;
-  out["completed"] = completed_;
-  out["status"] = status_;
-  out["message"] = message_;
+  out["completed"] = finished_ && ran_all_steps(outcome_.status);
+  out["status"] = finished_ ? to_string(outcome_.status) : "running";
+  out["message"] = outcome_.message;
+  out["reason"] = outcome_.reason;
+  // Where a stopped run stopped: the step, and the coupling iteration where it is known.
+  json stopped_at = nullptr;
+  if (outcome_.step > 0)
+    stopped_at = {{"step", outcome_.step},
+                  {"iteration", outcome_.iteration > 0 ? json(outcome_.iteration) : json(nullptr)}};
+  out["stopped_at"] = stopped_at;
   out["steps_completed"] = steps_.size();
   out["last_step"] = steps_.empty() ? json(nullptr) : json(steps_.back());
   out["iterations_per_step"] = iterations_;

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "coupler/results/run_outcome.hpp"
 #include "coupler/results/step_record.hpp"
 
 namespace cocopp {
@@ -20,12 +21,22 @@ class RunSummary {
   /// How the run ended, with the totals over the whole run (including start-up and
   /// finalisation, which the steps do not cover). Throws std::invalid_argument unless
   /// total_solver_times has one entry per solver.
-  void finish(bool completed, const std::string& status, const std::string& message,
-              double total_wall_time, const std::vector<double>& total_solver_times,
-              double total_coupler_time);
+  void finish(const RunOutcome& outcome, double total_wall_time,
+              const std::vector<double>& total_solver_times, double total_coupler_time);
 
   /// Before finish(): status "running" and the times summed over the steps added so far.
   nlohmann::json to_json() const;
+
+  const RunDescription& run() const { return run_; }
+  const std::vector<int>& iterations_per_step() const { return iterations_; }
+  const std::vector<int>& unconverged_steps() const { return unconverged_steps_; }
+  int steps_completed() const { return static_cast<int>(steps_.size()); }
+  long total_iterations() const;
+  /// NaN before the first step.
+  double average_iterations() const;
+  double wall_time() const { return wall_time_; }
+  /// The coupling algorithm's own time inside the steps (no start-up, no results I/O).
+  double step_coupler_time() const { return iteration_coupler_time_; }
 
   /// Writes to_json() indented, atomically: readers see the old file or the new one, never a
   /// partial one. Creates the directory. Throws std::runtime_error on failure.
@@ -42,9 +53,8 @@ class RunSummary {
   std::vector<int> unconverged_steps_;
   std::vector<std::string> warnings_;  ///< "step 3: ...", from StepRecord::warnings
 
-  bool completed_ = false;
-  std::string status_ = "running";
-  std::string message_;
+  bool finished_ = false;
+  RunOutcome outcome_;
   double wall_time_ = 0;
   std::vector<double> solver_times_;
   double coupler_time_ = 0;

@@ -30,28 +30,16 @@ void write_node(hid_t group, const State& node) {
 }
 
 State::Array read_array(hid_t dataset) {
-  const H5Handle space(checked(H5Dget_space(dataset), "H5Dget_space"), H5Sclose);
-  const int rank = checked(H5Sget_simple_extent_ndims(space.get()), "H5Sget_simple_extent_ndims");
-  if (rank > 2) throw H5Error(object_name(dataset) + " has more than 2 dimensions");
-  hsize_t dims[2] = {1, 1};
-  if (rank > 0) H5Sget_simple_extent_dims(space.get(), dims, nullptr);
-  RowMajor values(Eigen::Index(dims[0]), Eigen::Index(rank == 2 ? dims[1] : 1));
-  if (values.size() > 0)
-    checked(H5Dread(dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
-            "reading " + object_name(dataset));
-  return {Eigen::MatrixXd(values), rank};
+  const std::vector<hsize_t> dims = dataset_shape(dataset);
+  if (dims.size() > 2) throw H5Error(object_name(dataset) + " has more than 2 dimensions");
+  const std::vector<double> values = read_doubles(dataset);
+  const Eigen::Index rows = dims.empty() ? 1 : Eigen::Index(dims[0]);
+  const Eigen::Index cols = dims.size() == 2 ? Eigen::Index(dims[1]) : 1;
+  return {Eigen::MatrixXd(Eigen::Map<const RowMajor>(values.data(), rows, cols)), int(dims.size())};
 }
 
 void read_node(hid_t group, State& node) {
-  H5G_info_t info;
-  checked(H5Gget_info(group, &info), "H5Gget_info");
-  for (hsize_t i = 0; i < info.nlinks; ++i) {
-    const ssize_t length = checked(
-        H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT),
-        "H5Lget_name_by_idx");
-    std::string name(std::size_t(length), '\0');
-    H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(), name.size() + 1,
-                       H5P_DEFAULT);
+  for (const std::string& name : member_names(group)) {
     const H5Handle object(checked(H5Oopen(group, name.c_str(), H5P_DEFAULT), "opening " + name),
                           H5Oclose);
     if (H5Iget_type(object.get()) == H5I_GROUP)
@@ -59,28 +47,6 @@ void read_node(hid_t group, State& node) {
     else
       node.set_array(name, read_array(object.get()));
   }
-}
-
-template <class T>
-T read_attribute(hid_t object, const char* name, hid_t memory_type) {
-  const H5Handle attribute(
-      checked(H5Aopen(object, name, H5P_DEFAULT), "opening attribute " + std::string(name)),
-      H5Aclose);
-  T value{};
-  checked(H5Aread(attribute.get(), memory_type, &value), "reading attribute " + std::string(name));
-  return value;
-}
-
-std::string read_string_attribute(hid_t object, const char* name) {
-  const H5Handle attribute(
-      checked(H5Aopen(object, name, H5P_DEFAULT), "opening attribute " + std::string(name)),
-      H5Aclose);
-  const H5Handle type = string_type();
-  char* text = nullptr;
-  checked(H5Aread(attribute.get(), type.get(), &text), "reading attribute " + std::string(name));
-  std::string value = text ? text : "";
-  H5free_memory(text);
-  return value;
 }
 
 }  // namespace
@@ -118,9 +84,9 @@ SavedState read_state_file(const std::filesystem::path& file) {
     const H5Handle h5(checked(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "opening"),
                       H5Fclose);
     SavedState saved;
-    saved.step = int(read_attribute<std::int64_t>(h5.get(), "step", H5T_NATIVE_INT64));
-    saved.time = read_attribute<double>(h5.get(), "time", H5T_NATIVE_DOUBLE);
-    saved.coupled_solver = read_string_attribute(h5.get(), "coupled_solver");
+    saved.step = int(read_doubles_attribute(h5.get(), "/", "step").at(0));
+    saved.time = read_doubles_attribute(h5.get(), "/", "time").at(0);
+    saved.coupled_solver = read_strings_attribute(h5.get(), "/", "coupled_solver").at(0);
     read_node(h5.get(), saved.state);
     return saved;
   } catch (const std::exception& error) {

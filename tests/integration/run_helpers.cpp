@@ -1,7 +1,6 @@
 #include "tests/integration/run_helpers.hpp"
 
 #include <gtest/gtest.h>
-#include <hdf5.h>
 #include <sys/wait.h>
 
 #include <array>
@@ -10,6 +9,8 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+
+#include "coupler/results/results_reader.hpp"
 
 namespace cocopp::testing {
 
@@ -50,32 +51,7 @@ nlohmann::json read_json(const fs::path& file) {
 }
 
 std::vector<double> read_dataset(const fs::path& file, const std::string& name) {
-  const hid_t h5 = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (h5 < 0) throw std::runtime_error("cannot open " + file.string());
-  const hid_t dataset = H5Dopen2(h5, name.c_str(), H5P_DEFAULT);
-  if (dataset < 0) {
-    H5Fclose(h5);
-    throw std::runtime_error("no dataset " + name + " in " + file.string());
-  }
-  const hid_t space = H5Dget_space(dataset);
-  std::vector<double> values(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
-  if (!values.empty())
-    H5Dread(dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
-  H5Sclose(space);
-  H5Dclose(dataset);
-  H5Fclose(h5);
-  return values;
-}
-
-void write_text(const fs::path& file, const std::string& text) {
-  std::ofstream(file) << text;
-}
-
-std::string read_text(const fs::path& file) {
-  std::ifstream in(file);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
+  return ResultsReader(file).dataset(name).values;
 }
 
 void edit(const std::filesystem::path& file, const std::string& from, const std::string& to) {

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/temporary_directory.hpp"
+
 namespace cocopp::testing {
 
 struct CommandResult {
@@ -19,10 +21,8 @@ CommandResult run_cocopp(const std::string& arguments);
 /// A fresh copy of examples/<example> in a temporary directory.
 std::filesystem::path copy_example(const std::string& example, const std::string& tag);
 nlohmann::json read_json(const std::filesystem::path& file);
-/// All values of a dataset of an HDF5 file, flattened.
+/// All values of a dataset of a results (or state) file, flattened (ResultsReader).
 std::vector<double> read_dataset(const std::filesystem::path& file, const std::string& name);
-void write_text(const std::filesystem::path& file, const std::string& text);
-std::string read_text(const std::filesystem::path& file);
 /// Replace the first occurrence of `from` in a file (a failed test if it is not there).
 void edit(const std::filesystem::path& file, const std::string& from, const std::string& to);
 

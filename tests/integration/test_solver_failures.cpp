@@ -50,9 +50,18 @@ std::vector<std::string> processes_in(const fs::path& dir) {
   return found;
 }
 
-void expect_stopped(const fs::path& dir, const std::string& status, int steps) {
+/// The run stopped with `status` in step steps + 1 (at `iteration` where the coupler knows it),
+/// for `reason`, after `steps` steps.
+void expect_stopped(const fs::path& dir, const std::string& status, int steps,
+                    const std::string& reason, int iteration = 0) {
   const auto summary = read_json(dir / "results" / "case.summary.json");
   EXPECT_EQ(summary["status"].get<std::string>(), status);
+  EXPECT_EQ(summary["reason"].get<std::string>(), reason);
+  EXPECT_EQ(summary["stopped_at"]["step"].get<int>(), steps + 1);
+  if (iteration > 0)
+    EXPECT_EQ(summary["stopped_at"]["iteration"].get<int>(), iteration);
+  else
+    EXPECT_TRUE(summary["stopped_at"]["iteration"].is_null());
   EXPECT_FALSE(summary["completed"].get<bool>());
   EXPECT_EQ(summary["steps_completed"].get<int>(), steps);
   // The steps before the failure are in the results file.
@@ -70,7 +79,7 @@ TEST(SolverFailures, CrashIsReportedWithTheLogTail) {
   EXPECT_NE(run.output.find("solver 'flow'"), std::string::npos) << run.output;
   EXPECT_NE(run.output.find("signal 11"), std::string::npos) << run.output;
   EXPECT_NE(run.output.find("flow.log"), std::string::npos) << run.output;
-  expect_stopped(dir, "solver_failed", 2);
+  expect_stopped(dir, "solver_failed", 2, "solver failure in step 3");
   fs::remove_all(dir);
 }
 
@@ -79,7 +88,7 @@ TEST(SolverFailures, HangIsStoppedAfterTheTimeout) {
   const CommandResult run = run_cocopp("run " + (dir / "case.yaml").string());
   EXPECT_EQ(run.exit_code, 1) << run.output;
   EXPECT_NE(run.output.find("did not answer"), std::string::npos) << run.output;
-  expect_stopped(dir, "solver_failed", 1);
+  expect_stopped(dir, "solver_failed", 1, "solver failure in step 2");
   fs::remove_all(dir);
 }
 
@@ -91,7 +100,7 @@ TEST(SolverFailures, NaNStopsTheRunAsDiverged) {
             std::string::npos)
       << run.output;
   EXPECT_NE(run.output.find("time step 4, coupling iteration 2"), std::string::npos) << run.output;
-  expect_stopped(dir, "diverged", 3);
+  expect_stopped(dir, "diverged", 3, "non-finite values in step 4, iteration 2", 2);
   fs::remove_all(dir);
 }
 
@@ -103,6 +112,6 @@ TEST(SolverFailures, InterruptStopsTheSolversAndKeepsTheResults) {
                   " run " + (dir / "case.yaml").string());
   EXPECT_NE(run.exit_code, 0) << run.output;
   EXPECT_NE(run.output.find("interrupted by signal 2"), std::string::npos) << run.output;
-  expect_stopped(dir, "interrupted", 2);
+  expect_stopped(dir, "interrupted", 2, "interrupted in step 3");
   fs::remove_all(dir);
 }

@@ -1,9 +1,8 @@
 #pragma once
 // A small run shared by the results tests: interfaces of two model parts, step records with
-// ragged residual histories, and data that differs per step, point and component. Also the
-// HDF5 C API readers the tests check the file with.
+// ragged residual histories, and data that differs per step, point and component. The tests
+// read the files back with ResultsReader (and with h5py).
 #include <gtest/gtest.h>
-#include <hdf5.h>
 
 #include <cmath>
 #include <filesystem>
@@ -12,6 +11,7 @@
 #include <vector>
 
 #include "core/data/interface.hpp"
+#include "coupler/results/results_reader.hpp"
 #include "coupler/results/results_writer.hpp"
 #include "coupler/results/step_record.hpp"
 
@@ -97,87 +97,6 @@ inline std::filesystem::path test_directory() {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
-}
-
-// ---- reading back with the HDF5 C API ----
-
-inline H5Handle open_file(const std::filesystem::path& file) {
-  return {H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose};
-}
-
-struct Array {
-  std::vector<hsize_t> shape;
-  std::vector<double> values;
-};
-
-inline std::vector<hsize_t> shape_of(hid_t space) {
-  std::vector<hsize_t> dims(H5Sget_simple_extent_ndims(space));
-  H5Sget_simple_extent_dims(space, dims.data(), nullptr);
-  return dims;
-}
-
-/// Any numeric dataset, converted to double.
-inline Array read_dataset(hid_t file, const std::string& path) {
-  const H5Handle dataset(H5Dopen2(file, path.c_str(), H5P_DEFAULT), H5Dclose);
-  if (!dataset.valid()) throw std::runtime_error("no dataset " + path);
-  const H5Handle space(H5Dget_space(dataset.get()), H5Sclose);
-  Array out{shape_of(space.get()), {}};
-  out.values.resize(H5Sget_simple_extent_npoints(space.get()));
-  if (!out.values.empty())
-    H5Dread(dataset.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.values.data());
-  return out;
-}
-
-/// The 0/1 values of a dataset of the h5py bool enum, read in its own type.
-inline std::vector<int> read_bools(hid_t file, const std::string& path) {
-  const H5Handle dataset(H5Dopen2(file, path.c_str(), H5P_DEFAULT), H5Dclose);
-  const H5Handle type(H5Dget_type(dataset.get()), H5Tclose);
-  const H5Handle space(H5Dget_space(dataset.get()), H5Sclose);
-  std::vector<std::int8_t> raw(H5Sget_simple_extent_npoints(space.get()));
-  H5Dread(dataset.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, raw.data());
-  return {raw.begin(), raw.end()};
-}
-
-inline H5Handle open_attribute(hid_t file, const std::string& object, const std::string& name) {
-  return {H5Aopen_by_name(file, object.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose};
-}
-
-inline std::vector<std::string> read_strings(hid_t file, const std::string& object,
-                                             const std::string& name) {
-  const H5Handle attribute = open_attribute(file, object, name);
-  if (!attribute.valid()) throw std::runtime_error("no attribute " + object + "@" + name);
-  const H5Handle space(H5Aget_space(attribute.get()), H5Sclose);
-  const H5Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
-  H5Tset_size(type.get(), H5T_VARIABLE);
-  H5Tset_cset(type.get(), H5T_CSET_UTF8);
-  std::vector<char*> pointers(H5Sget_simple_extent_npoints(space.get()), nullptr);
-  if (!pointers.empty()) H5Aread(attribute.get(), type.get(), pointers.data());
-  std::vector<std::string> out;
-  for (char* p : pointers) {
-    out.emplace_back(p ? p : "");
-    H5free_memory(p);
-  }
-  return out;
-}
-
-inline std::string read_string(hid_t file, const std::string& object, const std::string& name) {
-  const auto strings = read_strings(file, object, name);
-  return strings.empty() ? "" : strings.front();
-}
-
-/// Numeric attribute (scalar or array), converted to double.
-inline std::vector<double> read_numbers(hid_t file, const std::string& object,
-                                        const std::string& name) {
-  const H5Handle attribute = open_attribute(file, object, name);
-  if (!attribute.valid()) throw std::runtime_error("no attribute " + object + "@" + name);
-  const H5Handle space(H5Aget_space(attribute.get()), H5Sclose);
-  std::vector<double> out(H5Sget_simple_extent_npoints(space.get()));
-  if (!out.empty()) H5Aread(attribute.get(), H5T_NATIVE_DOUBLE, out.data());
-  return out;
-}
-
-inline double read_number(hid_t file, const std::string& object, const std::string& name) {
-  return read_numbers(file, object, name).at(0);
 }
 
 }  // namespace cocopp::test

@@ -14,6 +14,16 @@ namespace {
 
 using nlohmann::json;
 
+RunOutcome outcome(RunStatus status, const std::string& message, const std::string& reason,
+                   int step = 0) {
+  RunOutcome o;
+  o.status = status;
+  o.message = message;
+  o.reason = reason;
+  o.step = step;
+  return o;
+}
+
 RunSummary summary_of(int steps) {
   RunSummary summary(make_run(steps));
   for (int step = 1; step <= steps; ++step) summary.add_step(make_record(step));
@@ -35,7 +45,8 @@ std::vector<std::string> directory_entries(const std::filesystem::path& dir) {
 
 TEST(RunSummary, ContentAfterFinish) {
   RunSummary summary = summary_of(3);
-  summary.finish(true, "completed", "all steps done", 2.0, {0.5, 0.75}, 0.75);
+  summary.finish(outcome(RunStatus::kStalled, "", "1 of 3 steps at the iteration limit"), 2.0,
+                 {0.5, 0.75}, 0.75);
   const json j = summary.to_json();
   EXPECT_EQ(j["cocopp_version"], "0.1.0");
   EXPECT_EQ(j["case"], "examples/tube/case.yaml");
@@ -43,8 +54,10 @@ TEST(RunSummary, ContentAfterFinish) {
   EXPECT_EQ(j["solvers"], json({"tube_flow", "tube_structure"}));
   EXPECT_DOUBLE_EQ(j["delta_t"].get<double>(), 0.01);
   EXPECT_EQ(j["completed"], true);
-  EXPECT_EQ(j["status"], "completed");
-  EXPECT_EQ(j["message"], "all steps done");
+  EXPECT_EQ(j["status"], "stalled");
+  EXPECT_EQ(j["message"], "");
+  EXPECT_EQ(j["reason"], "1 of 3 steps at the iteration limit");
+  EXPECT_TRUE(j["stopped_at"].is_null());
   EXPECT_EQ(j["steps_completed"], 3);
   EXPECT_EQ(j["last_step"], 3);
   EXPECT_EQ(j["iterations_per_step"], json({3, 1, 2}));
@@ -71,7 +84,9 @@ TEST(RunSummary, BeforeFinishItIsRunningWithTimesSummedOverSteps) {
 
 TEST(RunSummary, WithoutStepsAveragesAreNull) {
   RunSummary summary(make_run(5));
-  summary.finish(false, "solver_failed", "tube_flow exited with code 1", 0.5, {0.1, 0.2}, 0.2);
+  summary.finish(outcome(RunStatus::kSolverFailed, "tube_flow exited with code 1",
+                         "solver failure in step 1", 1),
+                 0.5, {0.1, 0.2}, 0.2);
   const json j = summary.to_json();
   EXPECT_EQ(j["steps_completed"], 0);
   EXPECT_TRUE(j["last_step"].is_null());
@@ -79,13 +94,43 @@ TEST(RunSummary, WithoutStepsAveragesAreNull) {
   EXPECT_TRUE(j["coupler_time_per_iteration"].is_null());
   EXPECT_EQ(j["iterations_per_step"], json::array());
   EXPECT_EQ(j["status"], "solver_failed");
+  EXPECT_EQ(j["completed"], false);
+  EXPECT_EQ(j["stopped_at"], json({{"step", 1}, {"iteration", nullptr}}));
+}
+
+TEST(RunSummary, ADivergenceSaysWhereItStopped) {
+  RunSummary summary = summary_of(2);
+  RunOutcome diverged = outcome(RunStatus::kDiverged, "the coupling diverged in time step 3",
+                                "residual growth in step 3, iteration 7", 3);
+  diverged.divergence = DivergenceKind::kGrowth;
+  diverged.iteration = 7;
+  summary.finish(diverged, 1.0, {0.25, 0.5}, 0.25);
+  const json j = summary.to_json();
+  EXPECT_EQ(j["status"], "diverged");
+  EXPECT_EQ(j["completed"], false);
+  EXPECT_EQ(j["reason"], "residual growth in step 3, iteration 7");
+  EXPECT_EQ(j["stopped_at"], json({{"step", 3}, {"iteration", 7}}));
+  EXPECT_EQ(diverged.exit_code(), 1);
+}
+
+TEST(RunOutcome, StatusNamesAndExitCodes) {
+  for (RunStatus status :
+       {RunStatus::kCompleted, RunStatus::kStalled, RunStatus::kDiverged, RunStatus::kSolverFailed,
+        RunStatus::kInterrupted, RunStatus::kFailed, RunStatus::kInvalidCase})
+    EXPECT_EQ(run_status_from_string(to_string(status)), status) << to_string(status);
+  EXPECT_THROW(run_status_from_string("finished"), std::invalid_argument);
+  EXPECT_EQ(outcome(RunStatus::kCompleted, "", "").exit_code(), 0);
+  EXPECT_EQ(outcome(RunStatus::kStalled, "", "").exit_code(), 0);
+  EXPECT_EQ(outcome(RunStatus::kInterrupted, "", "").exit_code(), 1);
+  EXPECT_EQ(outcome(RunStatus::kInvalidCase, "", "").exit_code(), 2);
+  EXPECT_STREQ(to_string(DivergenceKind::kNonFinite), "non-finite values");
 }
 
 TEST(RunSummary, RepeatedSolverNamesKeepBothTimes) {
   RunDescription run = make_run(1);
   run.solver_names = {"tube", "tube"};
   RunSummary summary(run);
-  summary.finish(true, "completed", "", 1.0, {0.25, 0.5}, 0.25);
+  summary.finish(RunOutcome{}, 1.0, {0.25, 0.5}, 0.25);
   const json times = summary.to_json()["solver_times"];
   EXPECT_EQ(times, json({{"tube", 0.25}, {"tube_2", 0.5}}));
 }
@@ -95,7 +140,7 @@ TEST(RunSummary, RejectsSolverTimesOfTheWrongLength) {
   StepRecord record = make_record(1);
   record.solver_times = {1.0};
   EXPECT_THROW(summary.add_step(record), std::invalid_argument);
-  EXPECT_THROW(summary.finish(true, "completed", "", 1, {1, 2, 3}, 0), std::invalid_argument);
+  EXPECT_THROW(summary.finish(RunOutcome{}, 1, {1, 2, 3}, 0), std::invalid_argument);
 }
 
 TEST(RunSummary, NonFiniteResidualsAndBadUtf8StillWrite) {
@@ -104,7 +149,7 @@ TEST(RunSummary, NonFiniteResidualsAndBadUtf8StillWrite) {
   StepRecord record = make_record(1);
   record.residual_norms = {1.0, std::numeric_limits<double>::quiet_NaN()};
   summary.add_step(record);
-  summary.finish(false, "diverged", "residual is \xff", 1, {0, 0}, 1);
+  summary.finish(outcome(RunStatus::kDiverged, "residual is \xff", "", 1), 1, {0, 0}, 1);
   summary.write(dir / "summary.json");
   const json j = read_json(dir / "summary.json");
   EXPECT_TRUE(j["residual_history"][0][1].is_null());

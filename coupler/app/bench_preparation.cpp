@@ -1,0 +1,144 @@
+#include "coupler/app/bench_preparation.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <fstream>
+
+#include "core/case/settings.hpp"
+#include "coupler/app/case.hpp"
+
+namespace cocopp {
+
+namespace {
+
+/// The base case's coupled solver with a tight tolerance: a converged solution to compare with.
+YAML::Node reference_coupled_solver(const YAML::Node& base, double tolerance) {
+  YAML::Node criterion =
+      YAML::Load(fmt::format("{{type: or, criteria: [{{type: relative_norm, tolerance: {:.17g}}}, "
+                             "{{type: iteration_limit, maximum: 100}}]}}",
+                             tolerance));
+  YAML::Node out = YAML::Clone(base);
+  out["convergence_criterion"] = criterion;
+  return out;
+}
+
+/// The solvers' working directories, relative to the base case's directory.
+std::vector<fs::path> working_directories(const YAML::Node& base_case) {
+  std::vector<fs::path> dirs;
+  for (const auto& wrapper : base_case["solver_wrappers"])
+    if (wrapper.IsMap() && wrapper["working_directory"])
+      dirs.emplace_back(wrapper["working_directory"].as<std::string>());
+  return dirs;
+}
+
+/// Copy the base case's directory without what earlier runs left there (results, solver
+/// output, logs), so that every run starts from the same inputs in its own directories.
+void copy_case_directory(const fs::path& from, const fs::path& to,
+                         const std::vector<fs::path>& skip) {
+  fs::create_directories(to);
+  for (auto it = fs::recursive_directory_iterator(from); it != fs::recursive_directory_iterator();
+       ++it) {
+    const fs::path relative = fs::relative(it->path(), from);
+    const bool skipped =
+        std::any_of(skip.begin(), skip.end(),
+                    [&](const fs::path& s) { return fs::equivalent(s, it->path()); }) ||
+        (it->is_regular_file() && it->path().extension() == ".log");
+    if (skipped) {
+      if (it->is_directory()) it.disable_recursion_pending();
+      continue;
+    }
+    if (it->is_directory())
+      fs::create_directories(to / relative);
+    else
+      fs::copy_file(it->path(), to / relative, fs::copy_options::overwrite_existing);
+  }
+}
+
+std::vector<fs::path> paths_not_to_copy(const BenchFile& bench, const YAML::Node& base_case) {
+  const fs::path base_dir = bench.base_case.parent_path();
+  std::vector<fs::path> skip;
+  auto add = [&](const fs::path& p) {
+    if (fs::exists(p)) skip.push_back(p);
+  };
+  std::string results = "results";
+  if (base_case["settings"] && base_case["settings"]["results_directory"])
+    results = base_case["settings"]["results_directory"].as<std::string>();
+  add(base_dir / results);
+  for (const fs::path& w : working_directories(base_case)) add(base_dir / w / "output");
+  add(bench.output_directory);  // an output directory inside the base case's directory
+  return skip;
+}
+
+/// Working directories outside the base case's directory would not be copied, and sharing
+/// them between runs would mix the runs' files.
+void check_working_directories(const YAML::Node& base_case, const fs::path& base_file) {
+  for (const fs::path& w : working_directories(base_case)) {
+    const fs::path normal = w.lexically_normal();
+    if (normal.is_absolute() || (!normal.empty() && *normal.begin() == ".."))
+      throw CaseError(fmt::format(
+          "{}: solver working directory '{}' lies outside the case's directory; cocopp bench "
+          "copies that directory for every run, so keep the working directories inside it",
+          base_file.string(), w.string()));
+  }
+}
+
+std::vector<SolverInput> solver_inputs(const BenchFile& bench, const BenchCase& bench_case,
+                                       const Changes& run) {
+  std::vector<SolverInput> all = bench.changes.solver_inputs;
+  all.insert(all.end(), bench_case.changes.solver_inputs.begin(),
+             bench_case.changes.solver_inputs.end());
+  all.insert(all.end(), run.solver_inputs.begin(), run.solver_inputs.end());
+  return all;
+}
+
+/// Write <output_directory>/[<case>/]<name>/case.yaml next to a fresh copy of the base case's
+/// files, with the solver inputs changed as the bench file says.
+PlannedRun prepare_run(const BenchFile& bench, const YAML::Node& base_case,
+                       const BenchCase& bench_case, const std::string& name,
+                       const YAML::Node& coupled_solver, const Changes& run) {
+  const fs::path dir = bench.output_directory / bench_case.name / name;
+  fs::remove_all(dir);
+  copy_case_directory(bench.base_case.parent_path(), dir, paths_not_to_copy(bench, base_case));
+  YAML::Node c = YAML::Clone(base_case);
+  c["coupled_solver"] = coupled_solver;
+  // Nested, not by assigning to a YAML::Node: that would write through into base_case.
+  YAML::Node s = deep_merge(deep_merge(deep_merge(base_case["settings"], bench.changes.settings),
+                                       bench_case.changes.settings),
+                            run.settings);
+  s["results_directory"] = "results";
+  s["results_name"] = "case";
+  c["settings"] = s;
+  YAML::Emitter out;
+  out << c;
+  const fs::path file = dir / "case.yaml";
+  std::ofstream(file) << "# written by cocopp bench from " << bench.file.string() << "\n"
+                      << out.c_str() << "\n";
+  return {bench_case.name, name, file,
+          apply_solver_inputs(file, solver_inputs(bench, bench_case, run))};
+}
+
+}  // namespace
+
+std::vector<PlannedRun> prepare_runs(const BenchFile& bench) {
+  const YAML::Node base = YAML::LoadFile(bench.base_case.string());
+  check_working_directories(base, bench.base_case);
+  std::vector<PlannedRun> runs;
+  for (const BenchCase& c : bench.cases) {
+    if (bench.reference == ReferenceKind::kComputed)
+      runs.push_back(prepare_run(
+          bench, base, c, kReferenceName,
+          reference_coupled_solver(base["coupled_solver"], bench.reference_tolerance), Changes{}));
+    for (const Variant& v : bench.variants)
+      runs.push_back(prepare_run(bench, base, c, v.name,
+                                 merge_coupled_solver(base["coupled_solver"], v.coupled_solver),
+                                 v.changes));
+  }
+  for (const PlannedRun& run : runs) {
+    const Case c = load_case(run.case_file);
+    for (const auto& solver : c.solvers) solver->check();
+  }
+  return runs;
+}
+
+}  // namespace cocopp
