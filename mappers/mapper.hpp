@@ -4,11 +4,11 @@
 // components to pass. In a case file:
 //
 //   input_mapper:
-//     type: linear              # the interpolator (docs/mappers-interpolators.md)
+//     type: linear          # the interpolator (docs/mappers-interpolators.md)
 //     directions: [z]
-//     transformers: []          # e.g. [{type: axisymmetric_2d_to_3d, ...}]
-//     (mappers-transformers.md) conservative: false       # true: M^T, totals preserved (nodal
-//     forces) components: [x, y, z]     # vector components passed on; the others become 0
+//     transformers: []      # e.g. [{type: axisymmetric_2d_to_3d}] (docs/mappers-transformers.md)
+//     conservative: false   # true: M^T, totals preserved (nodal forces)
+//     components: [x, y, z] # vector components passed on; the others become 0
 #include <memory>
 #include <vector>
 

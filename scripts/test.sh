@@ -2,12 +2,21 @@
 # Run the whole test suite: install what is missing, build, run ctest; then the same suite in
 # an AddressSanitizer/UndefinedBehaviorSanitizer build (set COCOPP_SKIP_SANITIZE=1 to skip it
 # locally). This is the command .ci/run calls.
+#
+# OpenFOAM and CalculiX are required (COCOPP_WITH_*=ON), so that a missing solver fails the
+# configure step instead of silently skipping its tests; COCOPP_WITHOUT_OPENFOAM=1 and
+# COCOPP_WITHOUT_CALCULIX=1 (as for install-dependencies) leave them out.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-dependencies.sh
-scripts/build.sh -DCOCOPP_WERROR=ON
+solvers=(
+  -DCOCOPP_WITH_OPENFOAM=$([ "${COCOPP_WITHOUT_OPENFOAM:-0}" = 1 ] && echo OFF || echo ON)
+  -DCOCOPP_WITH_CALCULIX=$([ "${COCOPP_WITHOUT_CALCULIX:-0}" = 1 ] && echo OFF || echo ON)
+)
+scripts/build.sh -DCOCOPP_WERROR=ON "${solvers[@]}"
 ctest --test-dir build --output-on-failure --timeout 300
 if [ "${COCOPP_SKIP_SANITIZE:-0}" != 1 ]; then
-  BUILD_DIR=build-asan BUILD_TYPE=RelWithDebInfo scripts/build.sh -DCOCOPP_SANITIZE=ON -DCOCOPP_WERROR=ON
+  BUILD_DIR=build-asan BUILD_TYPE=RelWithDebInfo scripts/build.sh -DCOCOPP_SANITIZE=ON \
+    -DCOCOPP_WERROR=ON "${solvers[@]}"
   ctest --test-dir build-asan --output-on-failure --timeout 600
 fi

@@ -1,7 +1,7 @@
 #pragma once
-// SolverWrapper: what the coupled solvers see of a solver. Every wrapper (a solver process, a
-// mapped wrapper, later OpenFOAM and CalculiX) implements this, so the coupling algorithms never
-// know which solver is behind an interface.
+// SolverWrapper: what the coupled solvers see of a solver. Every wrapper (a solver process and
+// the built-in tube types, a mapped wrapper, openfoam, calculix) implements this, so the
+// coupling algorithms never know which solver is behind an interface.
 #include <filesystem>
 #include <string>
 

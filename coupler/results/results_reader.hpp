@@ -53,7 +53,8 @@ class ResultsReader {
                                         const std::string& variable) const;
 
  private:
-  [[noreturn]] void fail(const std::exception& error) const;
+  /// Throws H5Error for a dataset that is not there.
+  H5Handle open_dataset(const std::string& name) const;
 
   std::filesystem::path path_;
   H5Handle file_;

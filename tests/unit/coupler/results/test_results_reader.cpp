@@ -41,6 +41,7 @@ TEST_F(ResultsReaderTest, ReadsTheLayout) {
   EXPECT_TRUE(reader.has("x/wall/displacement"));
   EXPECT_FALSE(reader.has("x/wall/pressure"));
   EXPECT_FALSE(reader.has("nowhere/at/all"));
+  EXPECT_FALSE(reader.has(""));
   EXPECT_TRUE(reader.has_attribute("/", "delta_t"));
   EXPECT_FALSE(reader.has_attribute("/", "colour"));
 

@@ -138,4 +138,13 @@ inline Eigen::Vector3d last_total_force(const std::filesystem::path& file, const
   return {row.at(0), row.at(1), row.at(2)};
 }
 
+/// The yield stress of the plastic test models.
+inline constexpr double kYield = 250e6;
+/// The .dat file prints 7 significant digits.
+inline constexpr double kDatPrecision = 1e-6;
+
+inline double max_abs(const Eigen::VectorXd& values) {
+  return values.cwiseAbs().maxCoeff();
+}
+
 }  // namespace cocopp::testing

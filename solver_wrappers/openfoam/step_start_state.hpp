@@ -1,0 +1,87 @@
+#pragma once
+// The state at the start of a time step that every coupling iteration of cocoppPimpleFoam
+// starts from: the mesh points and a copy of every field OpenFOAM writes, restored exactly.
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "fvMesh.H"
+#include "pointFields.H"
+#include "surfaceFields.H"
+#include "volFields.H"
+
+namespace cocopp::openfoam {
+
+using Foam::fvMesh;
+using Foam::HashTable;
+using Foam::IOobject;
+using Foam::objectRegistry;
+using Foam::pointField;
+using Foam::pointVectorField;
+using Foam::surfaceScalarField;
+using Foam::surfaceVectorField;
+using Foam::volScalarField;
+using Foam::volSymmTensorField;
+using Foam::volVectorField;
+using Foam::word;
+
+/// Copies of the fields of one type that OpenFOAM writes (the solution: U, p, phi, Uf,
+/// turbulence fields, cellDisplacement, pointDisplacement, ...), by name.
+template <class Field>
+class FieldCopies {
+ public:
+  void store(const objectRegistry& registry) {
+    copies_.clear();
+    const HashTable<const Field*> fields = registry.lookupClass<Field>();
+    for (const word& name : fields.sortedToc()) {
+      const Field* field = fields[name];
+      if (field->writeOpt() != IOobject::AUTO_WRITE) continue;
+      IOobject io(field->name() + "_cocoppStepStart", field->instance(), field->db(),
+                  IOobject::NO_READ, IOobject::NO_WRITE, false);
+      copies_.emplace_back(field->name(), std::make_unique<Field>(io, *field));
+    }
+  }
+  void restore(const objectRegistry& registry) const {
+    for (const auto& [name, copy] : copies_)
+      const_cast<Field&>(registry.lookupObject<Field>(name)) == *copy;
+  }
+
+ private:
+  std::vector<std::pair<word, std::unique_ptr<Field>>> copies_;
+};
+
+/// The state at the start of a time step that every coupling iteration starts from.
+class StepStartState {
+ public:
+  void store(const fvMesh& mesh) {
+    points_ = mesh.points();
+    vol_scalars_.store(mesh);
+    vol_vectors_.store(mesh);
+    vol_symm_tensors_.store(mesh);
+    surface_scalars_.store(mesh);
+    surface_vectors_.store(mesh);
+    point_vectors_.store(mesh);
+  }
+  void restore(fvMesh& mesh) const {
+    // Back to the mesh of the step's start: the motion solver and the discretisation depend
+    // on the current geometry. The old-time points and volumes of the step stay as they are.
+    mesh.movePoints(points_);
+    vol_scalars_.restore(mesh);
+    vol_vectors_.restore(mesh);
+    vol_symm_tensors_.restore(mesh);
+    surface_scalars_.restore(mesh);
+    surface_vectors_.restore(mesh);
+    point_vectors_.restore(mesh);
+  }
+
+ private:
+  pointField points_;
+  FieldCopies<volScalarField> vol_scalars_;
+  FieldCopies<volVectorField> vol_vectors_;
+  FieldCopies<volSymmTensorField> vol_symm_tensors_;
+  FieldCopies<surfaceScalarField> surface_scalars_;
+  FieldCopies<surfaceVectorField> surface_vectors_;
+  FieldCopies<pointVectorField> point_vectors_;
+};
+
+}  // namespace cocopp::openfoam
