@@ -9,12 +9,16 @@
 
 #include "solver_wrappers/process/process_solver_wrapper.hpp"
 #include "solver_wrappers/solver_error.hpp"
-#include "tests/support/temporary_directory.hpp"
+#include "tests/integration/openfoam/openfoam_files.hpp"
 
 namespace cocopp {
 namespace {
 
+using testing::read_internal_field;
+using testing::read_list_file;
+using testing::read_patch_values;
 using testing::read_text;
+using testing::run_in;
 using testing::TemporaryDirectory;
 
 constexpr double kDeltaT = 0.001;
@@ -24,57 +28,9 @@ constexpr double kLength = 0.1;  // channel length (system/blockMeshDict)
 const std::filesystem::path kCaseTemplate =
     std::filesystem::path(COCOPP_TEST_SOURCE_DIR) / "tests/integration/openfoam/channel";
 
-void run_in(const std::filesystem::path& directory, const std::string& command) {
-  const std::string line = "cd '" + directory.string() +
-                           "' && WM_PROJECT_DIR=/usr/share/openfoam " + command +
-                           " >> log.setup 2>&1";
-  ASSERT_EQ(std::system(line.c_str()), 0) << line << "\n" << read_text(directory / "log.setup");
-}
-
 /// A fresh copy of the channel case with its mesh, in `directory`.
 void make_case(const std::filesystem::path& directory) {
-  std::filesystem::copy(kCaseTemplate, directory, std::filesystem::copy_options::recursive);
-  run_in(directory, "blockMesh");
-}
-
-/// The numbers of the first list "( ... )" after `from` in `text`, nested lists flattened:
-/// a scalar list gives its values, a vector list x y z per vector.
-std::vector<double> list_after(const std::string& text, std::size_t from) {
-  std::size_t open = text.find('(', from);
-  EXPECT_NE(open, std::string::npos);
-  std::vector<double> values;
-  int depth = 0;
-  for (std::size_t i = open; i < text.size(); ++i) {
-    if (text[i] == '(') ++depth;
-    if (text[i] == ')' && --depth == 0) break;
-    if (std::isdigit(static_cast<unsigned char>(text[i])) || text[i] == '-') {
-      std::size_t used = 0;
-      values.push_back(std::stod(text.substr(i, 40), &used));
-      i += used - 1;
-    }
-  }
-  return values;
-}
-
-/// An OpenFOAM list file (polyMesh/points, owner): the list after the FoamFile header.
-std::vector<double> read_list_file(const std::filesystem::path& file) {
-  const std::string text = read_text(file);
-  return list_after(text, text.find('}', text.find("FoamFile")));
-}
-
-std::vector<double> read_internal_field(const std::filesystem::path& file) {
-  const std::string text = read_text(file);
-  const std::size_t entry = text.find("internalField");
-  EXPECT_NE(text.find("nonuniform", entry), std::string::npos) << file;
-  return list_after(text, entry);
-}
-
-std::vector<double> read_patch_values(const std::filesystem::path& file, const std::string& patch) {
-  const std::string text = read_text(file);
-  std::smatch match;
-  const std::string boundary = text.substr(text.find("boundaryField"));
-  EXPECT_TRUE(std::regex_search(boundary, match, std::regex("\\b" + patch + "\\s*\\{"))) << file;
-  return list_after(boundary, boundary.find("value", match.position()));
+  testing::make_case(kCaseTemplate, directory);
 }
 
 double max_abs(const std::vector<double>& values) {
