@@ -1,0 +1,213 @@
+#!/usr/bin/python3
+"""Write the wire drawing case (docs/wire-drawing.md) from parameters.yaml.
+
+    make_case.py [--parameters parameters.yaml] [--output DIR] [--refine] [--set KEY=VALUE ...]
+
+Writes DIR/fluid, the lubricant film as an OpenFOAM case (an axisymmetric wedge between the
+wire's surface and the die: an entry cone and a bearing; blockMesh makes its mesh). --refine
+doubles the cells in each direction; --set changes one parameter, e.g. --set die.reduction=0
+(the die held for the whole run) or --set lubricant.viscosity=122.5.
+"""
+import argparse
+import math
+import pathlib
+import sys
+
+import yaml
+
+HERE = pathlib.Path(__file__).resolve().parent
+
+
+def load_parameters(path, changes):
+    parameters = yaml.safe_load(pathlib.Path(path).read_text())
+    for change in changes:
+        key, _, value = change.partition("=")
+        section, _, name = key.partition(".")
+        if section not in parameters or name not in parameters[section]:
+            sys.exit(f"make_case.py: --set {change}: no parameter '{key}' in {path}")
+        parameters[section][name] = type(parameters[section][name])(yaml.safe_load(value))
+    return parameters
+
+
+class Film:
+    """The film's geometry: z along the axis (drawing direction), r from the axis."""
+
+    def __init__(self, p, refine):
+        wire, die, mesh = p["wire"], p["die"], p["mesh"]
+        self.radius = wire["radius"]
+        self.entry = die["entry_length"]
+        self.bearing = die["bearing_length"]
+        self.gap = die["film_thickness"]
+        self.slope = math.tan(math.radians(die["half_angle_degrees"]))
+        self.half_wedge = math.radians(mesh["wedge_degrees"] / 2)
+        factor = 2 if refine else 1
+        axial = factor * mesh["film_axial_cells"]
+        self.entry_cells = round(axial * self.entry / (self.entry + self.bearing))
+        self.bearing_cells = axial - self.entry_cells
+        self.radial_cells = factor * mesh["film_radial_cells"]
+
+    def die_radius(self, z):
+        """The die's radius at axial position z (0: film inlet), before it moves."""
+        return self.radius + self.gap + self.slope * max(self.entry - z, 0.0)
+
+    @property
+    def length(self):
+        return self.entry + self.bearing
+
+
+def header(cls, name, location=None):
+    where = f'\n    location    "{location}";' if location else ""
+    return (f"FoamFile\n{{\n    version     2.0;\n    format      ascii;\n    class       {cls};"
+            f"{where}\n    object      {name};\n}}\n\n")
+
+
+def wedge_point(r, z, side, film):
+    s, c = math.sin(film.half_wedge), math.cos(film.half_wedge)
+    return f"({side * r * s:.17g} {r * c:.17g} {z:.17g})"
+
+
+def block_mesh_dict(film):
+    # Vertices per axial station z (inlet, end of the cone, outlet): wire front, die front,
+    # die back, wire back; blocks are hex (wire-front die-front die-back wire-back) x (z0 z1).
+    stations = [0.0, film.entry, film.length]
+    vertices = []
+    for z in stations:
+        r_die = film.die_radius(z)
+        vertices += [wedge_point(film.radius, z, 1, film), wedge_point(r_die, z, 1, film),
+                     wedge_point(r_die, z, -1, film), wedge_point(film.radius, z, -1, film)]
+
+    def hex_block(k, cells):
+        a, b = 4 * k, 4 * (k + 1)
+        ids = " ".join(str(i) for i in [a, a + 1, a + 2, a + 3, b, b + 1, b + 2, b + 3])
+        return f"    hex ({ids}) ({film.radial_cells} 1 {cells}) simpleGrading (1 1 1)"
+
+    def faces(pattern):
+        return " ".join("(" + " ".join(str(4 * k + i) for i in pattern(k)) + ")" for k in (0, 1))
+
+    wire = faces(lambda k: [0, 4, 7, 3])
+    die = faces(lambda k: [1, 2, 6, 5])
+    front = faces(lambda k: [0, 1, 5, 4])
+    back = faces(lambda k: [3, 7, 6, 2])
+    return (header("dictionary", "blockMeshDict") +
+            "// The lubricant film (make_case.py): wire surface `wire` at r = R, die `die` with an\n"
+            "// entry cone and a bearing, axisymmetric wedge about the z axis.\nscale 1;\n\n"
+            "vertices\n(\n" + "\n".join("    " + v for v in vertices) + "\n);\n\n"
+            "blocks\n(\n" + hex_block(0, film.entry_cells) + "\n" +
+            hex_block(1, film.bearing_cells) + "\n);\n\nboundary\n(\n"
+            f"    wire   {{ type wall;  faces ({wire}); }}\n"
+            f"    die    {{ type wall;  faces ({die}); }}\n"
+            "    inlet  { type patch; faces ((0 1 2 3)); }\n"
+            "    outlet { type patch; faces ((8 9 10 11)); }\n"
+            f"    front  {{ type wedge; faces ({front}); }}\n"
+            f"    back   {{ type wedge; faces ({back}); }}\n);\n")
+
+
+def die_schedule(p):
+    """(time, radial displacement) of the die: held, then closing at a constant rate until the
+    wire's cross section is reduced by `reduction`."""
+    radius, time = p["wire"]["radius"], p["time"]
+    closing = radius * (1.0 - math.sqrt(1.0 - p["die"]["reduction"]))
+    held = time["held_steps"] * time["delta_t"]
+    end = time["steps"] * time["delta_t"]
+    return [(0.0, 0.0), (held, 0.0), (end, -closing)]
+
+
+def fluid_files(p, film):
+    lubricant, time = p["lubricant"], p["time"]
+    speed = p["wire"]["drawing_speed"]
+    table = " ".join(f"({t:.17g} {d:.17g})" for t, d in die_schedule(p))
+    end_time = time["steps"] * time["delta_t"]
+    walls = "    front        { type wedge; }\n    back         { type wedge; }\n"
+    return {
+        "system/blockMeshDict": block_mesh_dict(film),
+        "0/U": header("volVectorField", "U") +
+        "dimensions      [0 1 -1 0 0 0 0];\ninternalField   uniform (0 0 0);\nboundaryField\n{\n"
+        "    // The wire's surface slides along the fixed film grid at the drawing speed; its\n"
+        "    // radial motion (the coupler's displacement) comes from the mesh.\n"
+        f"    wire         {{ type cocoppSlidingWallVelocity; wallVelocity constant (0 0 {speed:.17g});"
+        " value uniform (0 0 0); }\n"
+        "    die          { type movingWallVelocity; value uniform (0 0 0); }\n"
+        "    inlet        { type pressureInletOutletVelocity; value uniform (0 0 0); }\n"
+        "    outlet       { type pressureInletOutletVelocity; value uniform (0 0 0); }\n" + walls +
+        "}\n",
+        "0/p": header("volScalarField", "p") +
+        "// Kinematic pressure (p / rho); ambient (0) at both ends of the film.\n"
+        "dimensions      [0 2 -2 0 0 0 0];\ninternalField   uniform 0;\nboundaryField\n{\n"
+        "    wire         { type zeroGradient; }\n    die          { type zeroGradient; }\n"
+        "    inlet        { type fixedValue; value uniform 0; }\n"
+        "    outlet       { type fixedValue; value uniform 0; }\n" + walls + "}\n",
+        "0/pointDisplacement": header("pointVectorField", "pointDisplacement") +
+        "// wire: the coupler's (radial) displacement; die: held, then closing radially.\n"
+        "dimensions      [0 1 0 0 0 0 0];\ninternalField   uniform (0 0 0);\nboundaryField\n{\n"
+        "    wire         { type fixedValue; value uniform (0 0 0); }\n"
+        "    die\n    {\n        type               cocoppRadialDisplacement;\n"
+        "        origin             (0 0 0);\n        axis               (0 0 1);\n"
+        f"        radialDisplacement table ({table});\n"
+        "        value              uniform (0 0 0);\n    }\n"
+        "    inlet        { type slip; }\n    outlet       { type slip; }\n" + walls + "}\n",
+        "constant/dynamicMeshDict": header("dictionary", "dynamicMeshDict") +
+        "dynamicFvMesh   dynamicMotionSolverFvMesh;\nmotionSolverLibs (\"libfvMotionSolvers.so\");\n"
+        "solver          displacementLaplacian;\n"
+        "// The film is thin: the radial motion of wire and die spreads linearly across it.\n"
+        "displacementLaplacianCoeffs\n{\n    diffusivity     uniform;\n}\n",
+        "constant/transportProperties": header("dictionary", "transportProperties") +
+        "transportModel  Newtonian;\n"
+        f"nu              {lubricant['viscosity'] / lubricant['density']:.17g};\n"
+        f"rho             {lubricant['density']:.17g};\n",
+        "constant/turbulenceProperties": header("dictionary", "turbulenceProperties") +
+        "simulationType  laminar;\n",
+        "system/controlDict": header("dictionary", "controlDict") +
+        "application     cocoppPimpleFoam;\nstartFrom       startTime;\nstartTime       0;\n"
+        f"stopAt          endTime;\nendTime         {end_time:.17g};\n"
+        f"deltaT          {time['delta_t']:.17g};\nwriteControl    timeStep;\n"
+        "writeInterval   1;\npurgeWrite      0;\nwriteFormat     ascii;\nwritePrecision  12;\n"
+        "writeCompression off;\ntimeFormat      general;\ntimePrecision   6;\n"
+        "runTimeModifiable false;\n",
+        "system/fvSchemes": header("dictionary", "fvSchemes") +
+        "// First order in time and central in space, as the paper (its Peclet number is far\n"
+        "// below 1).\nddtSchemes      { default Euler; }\ngradSchemes     { default Gauss linear; }\n"
+        "divSchemes\n{\n    default         none;\n    div(phi,U)      Gauss linear;\n"
+        "    div((nuEff*dev2(T(grad(U))))) Gauss linear;\n}\n"
+        "laplacianSchemes { default Gauss linear corrected; }\n"
+        "interpolationSchemes { default linear; }\nsnGradSchemes   { default corrected; }\n",
+        "system/fvSolution": header("dictionary", "fvSolution") +
+        "solvers\n{\n    \"(p|pFinal|pcorr|pcorrFinal)\"\n    {\n        solver          PCG;\n"
+        "        preconditioner  DIC;\n        tolerance       1e-12;\n        relTol          0;\n"
+        "    }\n    \"(U|UFinal)\"\n    {\n        solver          smoothSolver;\n"
+        "        smoother        symGaussSeidel;\n        tolerance       1e-14;\n"
+        "        relTol          0;\n    }\n    cellDisplacement\n    {\n"
+        "        solver          PCG;\n        preconditioner  DIC;\n        tolerance       1e-16;\n"
+        "        relTol          0;\n    }\n}\n\n"
+        "// The film is viscous (Re ~ 1e-5) and steady within a time step: the outer loop iterates\n"
+        "// pressure and velocity to convergence, which needs the consistent (SIMPLEC) form and a\n"
+        "// slightly relaxed momentum equation (plain PISO diverges on this film).\n"
+        "PIMPLE\n{\n    nOuterCorrectors 100;\n    nCorrectors     2;\n"
+        "    nNonOrthogonalCorrectors 1;\n    consistent      yes;\n    residualControl\n    {\n"
+        "        \"(U|p)\" { tolerance 1e-7; relTol 0; }\n    }\n}\n\n"
+        "relaxationFactors\n{\n    equations { U 0.9; UFinal 1; }\n}\n",
+    }
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--parameters", default=str(HERE / "parameters.yaml"))
+    parser.add_argument("--output", default=str(HERE / "results" / "case"),
+                        help="directory to write the case into (default: results/case)")
+    parser.add_argument("--refine", action="store_true", help="double the cells in each direction")
+    parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                        help="change one parameter, e.g. --set die.reduction=0")
+    args = parser.parse_args()
+    p = load_parameters(args.parameters, args.set)
+    film = Film(p, args.refine)
+    output = pathlib.Path(args.output)
+    for name, text in fluid_files(p, film).items():
+        path = output / "fluid" / name
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(text)
+    print(f"make_case.py: film of {film.radial_cells} x {film.entry_cells + film.bearing_cells} "
+          f"cells in {output / 'fluid'}")
+
+
+if __name__ == "__main__":
+    main()

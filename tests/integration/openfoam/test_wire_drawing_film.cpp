@@ -1,0 +1,174 @@
+// The wire drawing example's lubricant film alone, with rigid walls (the die held, the wire's
+// surface sliding at the drawing speed), against lubrication theory for the same annular gap
+// (docs/wire-drawing.md, "The film alone"). The film is thin (h/L < 0.1) and slow (Re ~ 1e-5),
+// so pressure and wire shear along the die must match the theory to within the mesh's error; a
+// mismatch would point at the sliding wall velocity or the mesh.
+// Needs OpenFOAM; built only when CMake found it.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <utility>
+
+#include "solver_wrappers/solver_wrapper.hpp"
+#include "tests/integration/openfoam/openfoam_files.hpp"
+
+namespace cocopp {
+namespace {
+
+using testing::run_in;
+using testing::TemporaryDirectory;
+
+// examples/wire_drawing/parameters.yaml
+constexpr double kRadius = 0.75e-3, kEntry = 1.0e-3, kBearing = 0.5e-3, kGap = 10e-6;
+constexpr double kViscosity = 245.0, kSpeed = 1.0, kDeltaT = 1e-4;
+const double kSlope = std::tan(6.0 * M_PI / 180.0);
+
+double gap(double z) {
+  return kGap + kSlope * std::max(kEntry - z, 0.0);
+}
+
+/// Lubrication theory for the annular film: at every z the axial Stokes flow between the wire
+/// (radius R, sliding at U) and the die (radius R + h(z), at rest) for the local pressure
+/// gradient G, u(r) = G r^2 / (4 eta) + A ln r + B, carries Q(G) = Q0 + G Q1 through the annulus;
+/// Q is the same at every z, and the one that gives ambient pressure at both ends of the film
+/// fixes p(z) = integral of G. (The plane Reynolds equation is this with r -> R: it puts the
+/// pressure about 10 % higher, because the pressure is a small difference of large terms that
+/// the film's curvature, h / R up to 15 % in the entry cone, shifts.) Integrated with the
+/// trapezoidal rule on n intervals along the film.
+struct Lubrication {
+  explicit Lubrication(int n = 20000) : dz((kEntry + kBearing) / n), pressure(n + 1, 0.0) {
+    // Q: zero integral of G = (Q - Q0) / Q1 over the film.
+    double a = 0.0, b = 0.0;
+    for (int i = 0; i <= n; ++i) {
+      const double w = (i == 0 || i == n) ? 0.5 : 1.0;
+      const auto [q0, q1] = flow_rates(i * dz);
+      a += w / q1;
+      b += w * q0 / q1;
+    }
+    flow = b / a;
+    for (int i = 1; i <= n; ++i)
+      pressure[i] = pressure[i - 1] + 0.5 * dz * (gradient((i - 1) * dz) + gradient(i * dz));
+  }
+  /// u(r) of the annulus for the gradient g and the wire's speed at z: the coefficients of r^2,
+  /// ln r and 1.
+  static std::array<double, 3> profile(double z, double g, double speed = kSpeed) {
+    const double inner = kRadius, outer = kRadius + gap(z);
+    const double a = (-speed - g * (outer * outer - inner * inner) / (4.0 * kViscosity)) /
+                     std::log(outer / inner);
+    const double b = speed - g * inner * inner / (4.0 * kViscosity) - a * std::log(inner);
+    return {g / (4.0 * kViscosity), a, b};
+  }
+  /// Q(G) = Q0 + G Q1 through the annulus at z (Simpson's rule across the gap): Q0 of the
+  /// sliding wire alone, Q1 of a unit gradient alone (a difference of the two would lose every
+  /// digit of Q1, some 13 orders of magnitude below Q0).
+  static std::pair<double, double> flow_rates(double z) {
+    auto rate = [z](double g, double speed) {
+      const auto [c, a, b] = profile(z, g, speed);
+      const int m = 64;
+      const double inner = kRadius, h = gap(z) / m;
+      double sum = 0.0;
+      for (int k = 0; k <= m; ++k) {
+        const double r = inner + k * h, w = (k == 0 || k == m) ? 1.0 : (k % 2 ? 4.0 : 2.0);
+        sum += w * (c * r * r + a * std::log(r) + b) * r;
+      }
+      return 2.0 * M_PI * sum * h / 3.0;
+    };
+    return {rate(0.0, kSpeed), rate(1.0, 0.0)};
+  }
+  double gradient(double z) const {
+    const auto [q0, q1] = flow_rates(z);
+    return (flow - q0) / q1;
+  }
+  double p(double z) const {
+    const double at = z / dz;
+    const auto i = static_cast<std::size_t>(std::min<double>(at, pressure.size() - 2));
+    return pressure[i] + (at - i) * (pressure[i + 1] - pressure[i]);
+  }
+  /// Axial force per area of the film on the wire: eta du/dr at r = R.
+  double shear(double z) const {
+    const auto [c, a, b] = profile(z, gradient(z));
+    return kViscosity * (2.0 * c * kRadius + a / kRadius);
+  }
+
+  double dz, flow = 0.0;
+  std::vector<double> pressure;
+};
+
+struct Differences {
+  double pressure = 0.0;  ///< largest |p - p_theory| / largest |p_theory|
+  double shear = 0.0;     ///< the same for the wire's shear, away from the cone's end
+};
+
+/// One time step of the example's film with the die held and the wire not moving radially
+/// (make_case.py `arguments`), against lubrication theory.
+Differences film_against_theory(const std::string& arguments) {
+  TemporaryDirectory directory;
+  const std::filesystem::path example =
+      std::filesystem::path(COCOPP_TEST_SOURCE_DIR) / "examples/wire_drawing";
+  run_in(directory.path(), "/usr/bin/python3 " + (example / "make_case.py").string() +
+                               " --output . --set die.reduction=0 " + arguments);
+  run_in(directory / "fluid", "blockMesh");
+  RunSettings run;
+  run.delta_t = kDeltaT;
+  run.case_directory = directory.path();
+  const Settings settings = Settings::load_string(
+      "type: openfoam\nname: film\nworking_directory: fluid\nboundary_names: [wire]\n"
+      "timeout: 120\n",
+      "case.yaml");
+  auto film = SolverWrapperRegistry::instance().create(settings, run);
+  film->initialize();
+  Interface still = film->input_interface();
+  still.set_data(Eigen::VectorXd::Zero(still.size()));
+  // The film's viscous time h^2 / nu is below 1e-7 s: one step of 1e-4 s from rest is steady.
+  film->initialize_step(1, kDeltaT);
+  const Interface loads = film->solve(still);
+  film->finalize_step();
+  film->finalize();
+
+  const Lubrication theory;
+  const auto& centres = loads.parts()[0].model_part->coordinates;
+  const Eigen::MatrixXd pressure = loads.values("wire_faces", "pressure");
+  const Eigen::MatrixXd traction = loads.values("wire_faces", "traction");
+  double peak = 0.0, peak_shear = 0.0;
+  for (Eigen::Index i = 0; i < centres.rows(); ++i) {
+    peak = std::max(peak, std::abs(theory.p(centres(i, 2))));
+    peak_shear = std::max(peak_shear, std::abs(theory.shear(centres(i, 2))));
+  }
+  EXPECT_GT(peak, 1e8);  // a real pressure build-up under the die
+  Differences differences;
+  for (Eigen::Index i = 0; i < centres.rows(); ++i) {
+    const double z = centres(i, 2);
+    differences.pressure =
+        std::max(differences.pressure, std::abs(pressure(i, 0) - theory.p(z)) / peak);
+    // Where the cone meets the bearing the wall turns by 6 degrees within a cell: lubrication
+    // theory, which assumes a slowly varying gap, does not hold there.
+    if (std::abs(z - kEntry) > 25e-6)
+      differences.shear =
+          std::max(differences.shear, std::abs(traction(i, 2) - theory.shear(z)) / peak_shear);
+  }
+  std::printf(
+      "film %s: pressure within %.3g of the peak %.4g Pa, wire shear within %.3g of the "
+      "peak %.4g Pa\n",
+      arguments.c_str(), differences.pressure, peak, differences.shear, peak_shear);
+  return differences;
+}
+
+// At the paper's resolution (5 x 100 cells) the film is within 8.7 % of the theory's peak
+// pressure and 4.0 % of its peak shear (measured); a mesh twice finer each way (--refine) comes
+// within 2.6 % and 1.1 %: the difference falls about as the square of the cell size, so it is
+// the mesh's, not the boundary conditions'.
+TEST(WireDrawingFilm, RigidFilmFollowsLubricationTheory) {
+  const Differences paper = film_against_theory("");
+  EXPECT_LT(paper.pressure, 0.10);
+  EXPECT_LT(paper.shear, 0.06);
+}
+
+TEST(WireDrawingFilm, RefinedFilmComesCloserToLubricationTheory) {
+  const Differences refined = film_against_theory("--refine");
+  EXPECT_LT(refined.pressure, 0.035);
+  EXPECT_LT(refined.shear, 0.02);
+}
+
+}  // namespace
+}  // namespace cocopp
