@@ -4,9 +4,12 @@
     make_case.py [--parameters parameters.yaml] [--output DIR] [--refine] [--set KEY=VALUE ...]
 
 Writes DIR/fluid, the lubricant film as an OpenFOAM case (an axisymmetric wedge between the
-wire's surface and the die: an entry cone and a bearing; blockMesh makes its mesh). --refine
-doubles the cells in each direction; --set changes one parameter, e.g. --set die.reduction=0
-(the die held for the whole run) or --set lubricant.viscosity=122.5.
+wire's surface and the die: an entry cone and a bearing; blockMesh makes its mesh), and
+DIR/structure/wire.inp, the wire as an axisymmetric CalculiX deck (CAX8, elastoplastic with
+Swift hardening, NLGEOM, quasi-static: pulled at the drawing speed at its exit end, the back
+force on its entry end). --refine doubles the cells and elements in each direction; --set
+changes one parameter, e.g. --set die.reduction=0 (the die held for the whole run) or
+--set lubricant.viscosity=122.5.
 """
 import argparse
 import math
@@ -20,6 +23,12 @@ HERE = pathlib.Path(__file__).resolve().parent
 
 def load_parameters(path, changes):
     parameters = yaml.safe_load(pathlib.Path(path).read_text())
+    for section, values in parameters.items():
+        for name, value in values.items():
+            # YAML 1.1 reads 1.5e9 (no sign in the exponent) as text: say so, not crash later.
+            if not isinstance(value, (int, float)):
+                sys.exit(f"make_case.py: {path}: {section}.{name}: '{value}' is not a number "
+                         f"(write exponents with a sign: 1.5e+9)")
     for change in changes:
         key, _, value = change.partition("=")
         section, _, name = key.partition(".")
@@ -188,6 +197,83 @@ def fluid_files(p, film):
     }
 
 
+def hardening_table(wire, points=40):
+    """(yield stress, plastic strain) pairs of Swift's law sigma_y = sigma_0 (1 + e_p / e_0)^n,
+    n the paper's hardening coefficient, up to a plastic strain of 1."""
+    sigma0, n, e0 = wire["yield_stress"], wire["hardening"], wire["hardening_reference_strain"]
+    strains = [0.0] + [10 ** (-4 + 4 * k / (points - 1)) for k in range(points)]
+    return [(sigma0 * (1 + e / e0) ** n, e) for e in strains]
+
+
+def quad8(node, i, k):
+    """A CAX8 element with its lower corner at the doubled grid point (i, k): corners
+    counter-clockwise in the (r, z) plane, then the mid-side nodes."""
+    ids = [(i, k), (i + 2, k), (i + 2, k + 2), (i, k + 2),
+           (i + 1, k), (i + 2, k + 1), (i + 1, k + 2), (i, k + 1)]
+    return ", ".join(str(node(a, b)) for a, b in ids)
+
+
+def wire_deck(p, refine):
+    """The wire as CAX8 elements (x = radius, y = axis): radial x axial elements of equal size,
+    its whole outer surface the interface (the wire slides: any part of it may be under the
+    film), pulled at the exit end (y max) by a prescribed axial displacement U t, the back force
+    as a uniform tension on the entry end (y min)."""
+    wire, time = p["wire"], p["time"]
+    factor = 2 if refine else 1
+    radial = factor * p["mesh"]["wire_radial_elements"]
+    axial = factor * p["mesh"]["wire_axial_elements"]
+    radius, length, start = wire["radius"], wire["length"], wire["start"]
+    ni, nk = 2 * radial + 1, 2 * axial + 1
+
+    def node(i, k):
+        return 1 + i + ni * k
+
+    def element(m, q):
+        return 1 + m + radial * q
+
+    lines = ["** The drawn wire (make_case.py): axisymmetric CAX8, x = radius, y = axis (z).",
+             "*NODE, NSET=NALL"]
+    for k in range(nk):
+        for i in range(ni):
+            if i % 2 + k % 2 <= 1:
+                lines.append(f"{node(i, k)}, {radius * i / (ni - 1):.13g}, "
+                             f"{start + length * k / (nk - 1):.13g}, 0.")
+    lines.append("*ELEMENT, TYPE=CAX8, ELSET=EALL")
+    for q in range(axial):
+        for m in range(radial):
+            lines.append(f"{element(m, q)}, {quad8(node, 2 * m, 2 * q)}")
+
+    def node_set(name, nodes):
+        lines.append(f"*NSET, NSET={name}")
+        lines.extend(f"{n}," for n in nodes)
+
+    node_set("SURFACEN", [node(ni - 1, k) for k in range(nk)])
+    node_set("AXIS", [node(0, k) for k in range(nk)])
+    node_set("EXIT", [node(i, nk - 1) for i in range(ni)])
+    lines.append("*SURFACE, NAME=SURFACE, TYPE=ELEMENT")  # r = R: edge S2 (nodes 2-3)
+    lines.extend(f"{element(radial - 1, q)}, S2" for q in range(axial))
+    lines.append("*ELSET, ELSET=ENTRY")  # y min: edge S1 (nodes 1-2)
+    lines.extend(f"{element(m, 0)}," for m in range(radial))
+    end = time["steps"] * time["delta_t"]
+    lines += ["*MATERIAL, NAME=STEEL", "*ELASTIC", f"{wire['young']:.13g}, {wire['poisson']:.13g}",
+              "*DENSITY", f"{wire['density']:.13g}", "*PLASTIC"]
+    lines.extend(f"{stress:.13g}, {strain:.13g}" for stress, strain in hardening_table(wire))
+    tension = wire["back_force"] / (math.pi * radius ** 2)
+    lines += ["*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL",
+              "** The exit end moves at the drawing speed: u_z = U t (total time).",
+              "*AMPLITUDE, NAME=PULL, TIME=TOTAL TIME",
+              f"0., 0., {end:.13g}, {wire['drawing_speed'] * end:.13g}",
+              "*BOUNDARY", "AXIS, 1, 1", "*BOUNDARY, AMPLITUDE=PULL", "EXIT, 2, 2, 1.",
+              "** Quasi-static: inertia is below 1e-2 of the stresses (docs/wire-drawing.md).",
+              "*STEP, NLGEOM, INC=1000", "*STATIC",
+              f"{time['delta_t']:.13g}, {time['delta_t']:.13g}, {time['delta_t'] * 1e-6:.13g}, "
+              f"{time['delta_t']:.13g}",
+              "** The back force: a uniform tension on the entry end (a negative pressure).",
+              "*DLOAD", f"ENTRY, P1, {-tension:.13g}",
+              "*NODE FILE", "U", "*EL FILE", "S, PEEQ", "*END STEP"]
+    return "\n".join(lines) + "\n"
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -205,8 +291,10 @@ def main():
         path = output / "fluid" / name
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(text)
+    (output / "structure").mkdir(parents=True, exist_ok=True)
+    (output / "structure" / "wire.inp").write_text(wire_deck(p, args.refine))
     print(f"make_case.py: film of {film.radial_cells} x {film.entry_cells + film.bearing_cells} "
-          f"cells in {output / 'fluid'}")
+          f"cells in {output / 'fluid'}, wire deck {output / 'structure' / 'wire.inp'}")
 
 
 if __name__ == "__main__":

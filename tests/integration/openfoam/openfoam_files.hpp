@@ -9,16 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "tests/support/temporary_directory.hpp"
+#include "tests/support/run_in.hpp"
 
 namespace cocopp::testing {
-
-inline void run_in(const std::filesystem::path& directory, const std::string& command) {
-  const std::string line = "cd '" + directory.string() +
-                           "' && WM_PROJECT_DIR=/usr/share/openfoam " + command +
-                           " >> log.setup 2>&1";
-  ASSERT_EQ(std::system(line.c_str()), 0) << line << "\n" << read_text(directory / "log.setup");
-}
 
 /// A fresh copy of the OpenFOAM case `case_template` with its mesh, in `directory`.
 inline void make_case(const std::filesystem::path& case_template,

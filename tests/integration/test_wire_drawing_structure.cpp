@@ -1,0 +1,63 @@
+// The wire drawing example's wire alone (examples/wire_drawing/make_case.py's CalculiX deck)
+// behind the calculix wrapper, with no film load: pulled at the drawing speed at its exit end
+// against the back force on its entry end, it must move and stretch as a bar in uniform
+// tension, sigma = F / (pi R^2): u_z = U t - (sigma / E)(z_exit - z), and narrow by the
+// Poisson contraction, u_r = -nu (sigma / E) R. Needs ccx; built only where CMake found it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "solver_wrappers/solver_wrapper.hpp"
+#include "tests/support/run_in.hpp"
+
+namespace cocopp {
+namespace {
+
+// examples/wire_drawing/parameters.yaml
+constexpr double kRadius = 0.75e-3, kLength = 30e-3, kStart = -20e-3;
+constexpr double kSpeed = 1.0, kBackForce = 100.0, kYoung = 177e9, kPoisson = 0.3;
+constexpr double kDeltaT = 1e-4;
+
+TEST(WireDrawingStructure, TheWireAloneIsABarInUniformTension) {
+  testing::TemporaryDirectory directory;
+  testing::run_in(directory.path(), "/usr/bin/python3 " +
+                                        (std::filesystem::path(COCOPP_TEST_SOURCE_DIR) /
+                                         "examples/wire_drawing/make_case.py")
+                                            .string() +
+                                        " --output .");
+  RunSettings run;
+  run.delta_t = kDeltaT;
+  run.case_directory = directory.path();
+  const Settings settings = Settings::load_string(
+      "type: calculix\nname: wire\nworking_directory: structure\ninput_file: wire.inp\n"
+      "interface_surface: SURFACE\ninterface_node_set: SURFACEN\nsave_results: false\n",
+      "case.yaml");
+  auto wire = SolverWrapperRegistry::instance().create(settings, run);
+  wire->initialize();
+  Interface loads = wire->input_interface();
+  loads.set_data(Eigen::VectorXd::Zero(loads.size()));
+
+  const double strain = kBackForce / (M_PI * kRadius * kRadius) / kYoung;
+  for (int step = 1; step <= 2; ++step) {
+    wire->initialize_step(step, step * kDeltaT);
+    const Interface& displacement = wire->solve(loads);
+    wire->finalize_step();
+    const auto& points = displacement.parts()[0].model_part->coordinates;  // x = r, y = z
+    const Eigen::MatrixXd u = displacement.values("SURFACEN", "displacement");
+    ASSERT_EQ(points.rows(), 2 * 306 + 1);
+    double axial = 0.0, radial = 0.0;
+    for (Eigen::Index i = 0; i < points.rows(); ++i) {
+      const double expected = kSpeed * step * kDeltaT - strain * (kStart + kLength - points(i, 1));
+      axial = std::max(axial, std::abs(u(i, 1) - expected));
+      radial = std::max(radial, std::abs(u(i, 0) + kPoisson * strain * kRadius));
+    }
+    // Against the stretch of the whole wire, 9.6 um, and the contraction, 0.072 um.
+    EXPECT_LT(axial, 1e-3 * strain * kLength) << "step " << step;
+    EXPECT_LT(radial, 1e-2 * kPoisson * strain * kRadius) << "step " << step;
+    std::printf("step %d: axial difference %.3g m, radial %.3g m\n", step, axial, radial);
+  }
+  wire->finalize();
+}
+
+}  // namespace
+}  // namespace cocopp
