@@ -274,6 +274,62 @@ def wire_deck(p, refine):
     return "\n".join(lines) + "\n"
 
 
+def case_file(p):
+    """The coupled case: the film (openfoam) and the wire (calculix behind a mapped wrapper)."""
+    time = p["time"]
+    return f"""# The dry wire drawing case (docs/wire-drawing.md), written by make_case.py.
+#   cocopp run case.yaml
+settings:
+  delta_t: {time['delta_t']:.17g}
+  number_of_timesteps: {time['steps']}
+coupled_solver:
+  type: iqni                      # IQN-ILS, as the paper
+  omega: 0.01
+  model:
+    type: ls
+    q: 0                          # the paper's IQN-ILS: no reuse of earlier steps
+  predictor:
+    type: linear
+  convergence_criterion:
+    type: or
+    criteria:
+      - type: absolute_norm       # the paper's 0.01 um on the 2-norm of the displacement residual
+        tolerance: 1.0e-8
+      - type: iteration_limit
+        maximum: 20
+solver_wrappers:
+  - type: openfoam                # F: the film's wire wall displacement -> its loads
+    name: film
+    working_directory: fluid
+    boundary_names: [wire]
+    timeout: 600
+  - type: mapped                  # S: the loads -> the wire's surface displacement
+    name: wire
+    coordinates: current          # a sliding interface: map on the current positions ...
+    rebuild: time_step            # ... every time step
+    solver_wrapper:
+      type: calculix
+      working_directory: structure
+      input_file: wire.inp
+      interface_surface: SURFACE
+      interface_node_set: SURFACEN
+      timeout: 600
+    input_mapper:                 # film face centres (axis z, radial y) -> wire edges (r, axis)
+      type: linear
+      directions: [y]             # along the axis only
+      unmatched: zero             # wire faces outside the film: ambient, no load
+      max_distance: 1.0e-5
+      transformers:
+        - {{type: permutation, permutation: [1, 2, 0]}}   # film (x, y, z) -> (y, z, x)
+    output_mapper:                # wire surface nodes (r, axis) -> film wall points (wedge)
+      type: linear
+      components: [x, y]          # only the radial displacement moves the film: it slides
+      transformers:
+        - {{type: axisymmetric_2d_to_3d, direction_axial: y, direction_radial: x, angle: {p['mesh']['wedge_degrees']:.17g}}}
+        - {{type: permutation, permutation: [2, 0, 1]}}   # (r, axis, third) -> film (third, r, axis)
+"""
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -293,6 +349,7 @@ def main():
         path.write_text(text)
     (output / "structure").mkdir(parents=True, exist_ok=True)
     (output / "structure" / "wire.inp").write_text(wire_deck(p, args.refine))
+    (output / "case.yaml").write_text(case_file(p))
     print(f"make_case.py: film of {film.radial_cells} x {film.entry_cells + film.bearing_cells} "
           f"cells in {output / 'fluid'}, wire deck {output / 'structure' / 'wire.inp'}")
 
