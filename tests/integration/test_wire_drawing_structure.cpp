@@ -9,6 +9,7 @@
 
 #include "solver_wrappers/solver_wrapper.hpp"
 #include "tests/support/run_in.hpp"
+#include "tests/support/solver_wrapper_case.hpp"
 
 namespace cocopp {
 namespace {
@@ -25,15 +26,10 @@ TEST(WireDrawingStructure, TheWireAloneIsABarInUniformTension) {
                                          "examples/wire_drawing/make_case.py")
                                             .string() +
                                         " --output .");
-  RunSettings run;
-  run.delta_t = kDeltaT;
-  run.case_directory = directory.path();
-  const Settings settings = Settings::load_string(
+  auto wire = testing::initialized_wrapper(
       "type: calculix\nname: wire\nworking_directory: structure\ninput_file: wire.inp\n"
       "interface_surface: SURFACE\ninterface_node_set: SURFACEN\nsave_results: false\n",
-      "case.yaml");
-  auto wire = SolverWrapperRegistry::instance().create(settings, run);
-  wire->initialize();
+      directory.path(), kDeltaT);
   Interface loads = wire->input_interface();
   loads.set_data(Eigen::VectorXd::Zero(loads.size()));
 

@@ -9,6 +9,7 @@
 
 #include "solver_wrappers/solver_wrapper.hpp"
 #include "tests/integration/openfoam/openfoam_files.hpp"
+#include "tests/support/solver_wrapper_case.hpp"
 
 namespace cocopp {
 namespace {
@@ -33,14 +34,10 @@ class FilmBoundaryConditions : public ::testing::Test {
     testing::make_case(
         std::filesystem::path(COCOPP_TEST_SOURCE_DIR) / "tests/integration/openfoam/film",
         directory_ / "film");
-    run_.delta_t = kDeltaT;
-    run_.case_directory = directory_.path();
-    const Settings settings = Settings::load_string(
+    wrapper_ = testing::initialized_wrapper(
         "type: openfoam\nname: film\nworking_directory: film\nboundary_names: [wire]\n"
         "timeout: 60\n",
-        "case.yaml");
-    wrapper_ = SolverWrapperRegistry::instance().create(settings, run_);
-    wrapper_->initialize();
+        directory_.path(), kDeltaT);
   }
   ~FilmBoundaryConditions() override { wrapper_->finalize(); }
 
@@ -64,7 +61,6 @@ class FilmBoundaryConditions : public ::testing::Test {
   }
 
   TemporaryDirectory directory_;
-  RunSettings run_;
   std::unique_ptr<SolverWrapper> wrapper_;
 };
 

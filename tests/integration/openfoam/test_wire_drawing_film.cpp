@@ -12,6 +12,7 @@
 
 #include "solver_wrappers/solver_wrapper.hpp"
 #include "tests/integration/openfoam/openfoam_files.hpp"
+#include "tests/support/solver_wrapper_case.hpp"
 
 namespace cocopp {
 namespace {
@@ -109,15 +110,10 @@ Differences film_against_theory(const std::string& arguments) {
   run_in(directory.path(), "/usr/bin/python3 " + (example / "make_case.py").string() +
                                " --output . --set die.reduction=0 " + arguments);
   run_in(directory / "fluid", "blockMesh");
-  RunSettings run;
-  run.delta_t = kDeltaT;
-  run.case_directory = directory.path();
-  const Settings settings = Settings::load_string(
+  auto film = testing::initialized_wrapper(
       "type: openfoam\nname: film\nworking_directory: fluid\nboundary_names: [wire]\n"
       "timeout: 120\n",
-      "case.yaml");
-  auto film = SolverWrapperRegistry::instance().create(settings, run);
-  film->initialize();
+      directory.path(), kDeltaT);
   Interface still = film->input_interface();
   still.set_data(Eigen::VectorXd::Zero(still.size()));
   // The film's viscous time h^2 / nu is below 1e-7 s: one step of 1e-4 s from rest is steady.
