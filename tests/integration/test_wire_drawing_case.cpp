@@ -2,8 +2,8 @@
 // (3 x 50 cells) and the wire (4 x 153 CAX8) through the sliding interface for 11 time steps,
 // the die held for 10 and closing in the 11th. Checks that the run completes with the paper's
 // coupling (IQN-ILS, 0.01 um) in a few iterations per step, and that film thickness and
-// pressure are where lubrication and the die schedule put them. The whole 80-step case is not
-// a test (docs/wire-drawing.md). Needs OpenFOAM and ccx.
+// pressure are where lubrication and the die schedule put them, and that plot.py draws the run.
+// The whole 80-step case is not a test (docs/wire-drawing.md). Needs OpenFOAM and ccx.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -70,6 +70,11 @@ TEST(WireDrawingCase, CoarseShortRunCouplesFilmAndWire) {
   EXPECT_LT(thickest, 10.5e-6);
   EXPECT_GT(peak, 4e8);
   EXPECT_LT(peak, 1.25e9);
+
+  // The figures of docs/wire-drawing.md come from plot.py: it draws this run too.
+  testing::run_in(directory.path(),
+                  "/usr/bin/python3 " + (example / "plot.py").string() + " . -o plot.png");
+  EXPECT_GT(fs::file_size(directory / "plot.png"), 10000u);
 }
 
 }  // namespace

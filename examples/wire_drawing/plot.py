@@ -1,0 +1,130 @@
+#!/usr/bin/python3
+"""Figures of a wire drawing run (docs/wire-drawing.md) from its results file.
+
+    plot.py [CASE_DIR] [-o wire-drawing.png] [--parameters parameters.yaml]
+
+CASE_DIR is the case directory run.sh wrote (default results/case; it holds results/case.h5).
+Four panels: the film thickness and the wire's radial displacement along the die, the pressure
+and the wire's shear along the die (before the die closes and at the last step), the coupling
+residuals of the last 5 time steps per iteration, and the coupling iterations per step against
+the paper's average of 5.33.
+"""
+import argparse
+import math
+import pathlib
+
+import h5py
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+import make_case  # noqa: E402
+
+HERE = pathlib.Path(__file__).resolve().parent
+PAPER_ITERATIONS = 5.33
+
+
+def die_displacement(schedule, t):
+    times, values = zip(*schedule)
+    return float(np.interp(t, times, values))
+
+
+def film_profile(f, film, schedule, delta_t, row):
+    """(z, film thickness, wire radial displacement) along the film's wall points at `row`."""
+    points = f["x/wire_points/coordinates"][:]
+    u = f["x/wire_points/displacement"][row]
+    radius = np.hypot(points[:, 0], points[:, 1])
+    radial = (points[:, 0] * u[:, 0] + points[:, 1] * u[:, 1]) / radius
+    z = points[:, 2]
+    t = f["steps/time"][row]
+    die = np.array([film.die_radius(zi) for zi in z]) + die_displacement(schedule, t)
+    thickness = die - (film.radius + radial)
+    order = np.argsort(z)
+    # Each axial position has a point on both wedge planes: one is enough.
+    keep = order[::2]
+    return z[keep], thickness[keep], radial[keep]
+
+
+def loads_profile(f, row):
+    centres = f["y/wire_faces/coordinates"][:]
+    order = np.argsort(centres[:, 2])
+    pressure = f["y/wire_faces/pressure"][row][:, 0]
+    shear = f["y/wire_faces/traction"][row][:, 2]
+    return centres[order, 2], pressure[order], shear[order]
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("case", nargs="?", default=str(HERE / "results" / "case"))
+    parser.add_argument("-o", "--output", default=None,
+                        help="the figure (default: <case>/wire-drawing.png)")
+    parser.add_argument("--parameters", default=str(HERE / "parameters.yaml"))
+    args = parser.parse_args()
+    case = pathlib.Path(args.case)
+    p = make_case.load_parameters(args.parameters, [])
+    film = make_case.Film(p, refine=False)
+    schedule = make_case.die_schedule(p)
+    output = pathlib.Path(args.output) if args.output else case / "wire-drawing.png"
+
+    with h5py.File(case / "results" / "case.h5", "r") as f:
+        steps = f["steps/step"][:]
+        iterations = f["steps/iterations"][:]
+        held = min(p["time"]["held_steps"], len(steps)) - 1
+        last = len(steps) - 1
+        rows = sorted({held, last})
+        fig, axes = plt.subplots(2, 2, figsize=(12, 8.5))
+        (thick_ax, load_ax), (residual_ax, iteration_ax) = axes
+
+        disp_ax = thick_ax.twinx()
+        for row, style in zip(rows, ["-", "--"]):
+            z, thickness, radial = film_profile(f, film, schedule, p["time"]["delta_t"], row)
+            label = f"step {steps[row]}"
+            thick_ax.plot(1e3 * z, 1e6 * thickness, "C0" + style, label=f"film, {label}")
+            disp_ax.plot(1e3 * z, 1e6 * radial, "C3" + style, label=f"wire u_r, {label}")
+        thick_ax.set(xlabel="z along the die [mm]", ylabel="film thickness [µm]",
+                     title="film thickness and the wire's radial displacement")
+        disp_ax.set_ylabel("wire radial displacement [µm]", color="C3")
+        thick_ax.legend(loc="upper left", fontsize=8)
+        disp_ax.legend(loc="upper right", fontsize=8)
+        thick_ax.set_ylim(bottom=0, top=min(thick_ax.get_ylim()[1], 40))
+
+        shear_ax = load_ax.twinx()
+        for row, style in zip(rows, ["-", "--"]):
+            z, pressure, shear = loads_profile(f, row)
+            load_ax.plot(1e3 * z, 1e-6 * pressure, "C0" + style, label=f"pressure, step {steps[row]}")
+            shear_ax.plot(1e3 * z, 1e-6 * shear, "C2" + style, label=f"wire shear, step {steps[row]}")
+        load_ax.set(xlabel="z along the die [mm]", ylabel="pressure [MPa]",
+                    title="pressure and wall shear on the wire")
+        shear_ax.set_ylabel("axial shear on the wire [MPa]", color="C2")
+        load_ax.legend(loc="upper left", fontsize=8)
+        shear_ax.legend(loc="lower right", fontsize=8)
+
+        offsets, counts = f["residuals/offset"][:], f["residuals/count"][:]
+        norms = f["residuals/norms"][:]
+        for row in range(max(0, len(steps) - 5), len(steps)):
+            values = norms[offsets[row]:offsets[row] + counts[row]]
+            residual_ax.semilogy(range(1, len(values) + 1), values, "o-", label=f"step {steps[row]}")
+        residual_ax.axhline(1e-8, color="k", lw=0.8, ls=":", label="tolerance 0.01 µm")
+        residual_ax.set(xlabel="coupling iteration", ylabel="‖r‖₂ [m]",
+                        title="coupling residuals of the last 5 time steps")
+        residual_ax.legend(fontsize=8)
+
+        average = float(np.mean(iterations))
+        iteration_ax.bar(steps, iterations, color="C0", label="cocopp, IQN-ILS")
+        iteration_ax.axhline(average, color="C0", ls="--", label=f"average {average:.2f}")
+        iteration_ax.axhline(PAPER_ITERATIONS, color="C3", ls=":",
+                             label=f"paper's average {PAPER_ITERATIONS}")
+        iteration_ax.set(xlabel="time step", ylabel="coupling iterations",
+                         title="coupling iterations per time step")
+        iteration_ax.legend(fontsize=8)
+    fig.tight_layout()
+    output.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(output, dpi=110)
+    print(f"plot.py: {output} ({len(steps)} steps, {average:.2f} iterations per step)")
+
+
+if __name__ == "__main__":
+    main()
