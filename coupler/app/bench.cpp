@@ -20,9 +20,8 @@ namespace {
 /// Run every case in turn; returns false if the bench has to stop (interrupt, no reference).
 bool run_all(const std::vector<PlannedRun>& runs, std::vector<BenchRow>& rows) {
   for (std::size_t i = 0; i < runs.size(); ++i) {
-    const std::string name =
-        runs[i].case_name.empty() ? runs[i].name : runs[i].case_name + "/" + runs[i].name;
-    fmt::print("\n=== bench run {} of {}: {} ===\n", i + 1, runs.size(), name);
+    fmt::print("\n=== bench run {} of {}: {} ===\n", i + 1, runs.size(),
+               run_label(runs[i].case_name, runs[i].name));
     std::fflush(stdout);
     const RunReport report = run_case(runs[i].case_file, RunOptions{true});
     BenchRow row = make_row(runs[i], report);

@@ -114,6 +114,10 @@ BenchFile read_bench_file(const fs::path& file) {
   return b;
 }
 
+std::string run_label(const std::string& case_name, const std::string& name) {
+  return case_name.empty() ? name : case_name + "/" + name;
+}
+
 /// The results file each case's runs are compared with (none for `reference: none`).
 fs::path reference_of(const BenchFile& bench, const std::string& case_name) {
   switch (bench.reference) {

@@ -51,6 +51,9 @@ struct BenchFile {
 /// Read and check a bench file; throws CaseError naming the file, line and key.
 BenchFile read_bench_file(const fs::path& file);
 
+/// How the table and the messages name a run: "<case>/<variant>", or the variant without cases.
+std::string run_label(const std::string& case_name, const std::string& name);
+
 /// The results file each case's runs are compared with (empty for `reference: none`).
 fs::path reference_of(const BenchFile& bench, const std::string& case_name);
 

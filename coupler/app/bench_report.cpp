@@ -90,7 +90,7 @@ fs::path plot_script() {
 }  // namespace
 
 std::string label(const BenchRow& r) {
-  return r.case_name.empty() ? r.name : r.case_name + "/" + r.name;
+  return run_label(r.case_name, r.name);
 }
 
 void print_table(const std::vector<BenchRow>& rows) {

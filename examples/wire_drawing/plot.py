@@ -10,7 +10,6 @@ residuals of the last 5 time steps per iteration, and the coupling iterations pe
 the paper's average of 5.33.
 """
 import argparse
-import math
 import pathlib
 
 import h5py
@@ -31,7 +30,7 @@ def die_displacement(schedule, t):
     return float(np.interp(t, times, values))
 
 
-def film_profile(f, film, schedule, delta_t, row):
+def film_profile(f, film, schedule, row):
     """(z, film thickness, wire radial displacement) along the film's wall points at `row`."""
     points = f["x/wire_points/coordinates"][:]
     u = f["x/wire_points/displacement"][row]
@@ -80,7 +79,7 @@ def main():
 
         disp_ax = thick_ax.twinx()
         for row, style in zip(rows, ["-", "--"]):
-            z, thickness, radial = film_profile(f, film, schedule, p["time"]["delta_t"], row)
+            z, thickness, radial = film_profile(f, film, schedule, row)
             label = f"step {steps[row]}"
             thick_ax.plot(1e3 * z, 1e6 * thickness, "C0" + style, label=f"film, {label}")
             disp_ax.plot(1e3 * z, 1e6 * radial, "C3" + style, label=f"wire u_r, {label}")

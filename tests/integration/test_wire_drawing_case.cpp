@@ -10,7 +10,7 @@
 
 #include "coupler/results/results_reader.hpp"
 #include "tests/integration/run_helpers.hpp"
-#include "tests/support/run_in.hpp"
+#include "tests/support/wire_drawing_case.hpp"
 
 namespace cocopp {
 namespace {
@@ -22,13 +22,11 @@ constexpr double kGap = 10e-6, kEntry = 1.0e-3, kClosingPerStep = 38.53e-6 / 70;
 
 TEST(WireDrawingCase, CoarseShortRunCouplesFilmAndWire) {
   testing::TemporaryDirectory directory;
-  const fs::path example = fs::path(COCOPP_TEST_SOURCE_DIR) / "examples/wire_drawing";
-  testing::run_in(directory.path(),
-                  "/usr/bin/python3 " + (example / "make_case.py").string() +
-                      " --output . --set mesh.wire_radial_elements=4"
-                      " --set mesh.wire_axial_elements=153 --set mesh.film_axial_cells=50"
-                      " --set mesh.film_radial_cells=3");
-  testing::run_in(directory / "fluid", "blockMesh");
+  testing::write_wire_drawing_case(
+      directory.path(),
+      "--set mesh.wire_radial_elements=4"
+      " --set mesh.wire_axial_elements=153"
+      " --set mesh.film_axial_cells=50 --set mesh.film_radial_cells=3");
   testing::edit(directory / "case.yaml", "number_of_timesteps: 80", "number_of_timesteps: 11");
   const testing::CommandResult run =
       testing::run_cocopp("run -q " + (directory / "case.yaml").string());
@@ -72,8 +70,9 @@ TEST(WireDrawingCase, CoarseShortRunCouplesFilmAndWire) {
   EXPECT_LT(peak, 1.25e9);
 
   // The figures of docs/wire-drawing.md come from plot.py: it draws this run too.
-  testing::run_in(directory.path(),
-                  "/usr/bin/python3 " + (example / "plot.py").string() + " . -o plot.png");
+  testing::run_in(
+      directory.path(),
+      "/usr/bin/python3 " + (testing::kWireDrawingExample / "plot.py").string() + " . -o plot.png");
   EXPECT_GT(fs::file_size(directory / "plot.png"), 10000u);
 }
 

@@ -8,8 +8,8 @@
 #include <cmath>
 
 #include "solver_wrappers/solver_wrapper.hpp"
-#include "tests/support/run_in.hpp"
 #include "tests/support/solver_wrapper_case.hpp"
+#include "tests/support/wire_drawing_case.hpp"
 
 namespace cocopp {
 namespace {
@@ -21,11 +21,7 @@ constexpr double kDeltaT = 1e-4;
 
 TEST(WireDrawingStructure, TheWireAloneIsABarInUniformTension) {
   testing::TemporaryDirectory directory;
-  testing::run_in(directory.path(), "/usr/bin/python3 " +
-                                        (std::filesystem::path(COCOPP_TEST_SOURCE_DIR) /
-                                         "examples/wire_drawing/make_case.py")
-                                            .string() +
-                                        " --output .");
+  testing::write_wire_drawing_case(directory.path(), "", /*mesh_film=*/false);
   auto wire = testing::initialized_wrapper(
       "type: calculix\nname: wire\nworking_directory: structure\ninput_file: wire.inp\n"
       "interface_surface: SURFACE\ninterface_node_set: SURFACEN\nsave_results: false\n",

@@ -1,0 +1,22 @@
+#pragma once
+// The wire drawing example's case written for a test: examples/wire_drawing/make_case.py into
+// `directory` with more of its arguments (e.g. "--set die.reduction=0"), and the film meshed
+// (blockMesh, which needs OpenFOAM) unless `mesh_film` is false.
+#include <filesystem>
+#include <string>
+
+#include "tests/support/run_in.hpp"
+
+namespace cocopp::testing {
+
+inline const std::filesystem::path kWireDrawingExample =
+    std::filesystem::path(COCOPP_TEST_SOURCE_DIR) / "examples/wire_drawing";
+
+inline void write_wire_drawing_case(const std::filesystem::path& directory,
+                                    const std::string& arguments = "", bool mesh_film = true) {
+  run_in(directory, "/usr/bin/python3 " + (kWireDrawingExample / "make_case.py").string() +
+                        " --output . " + arguments);
+  if (mesh_film) run_in(directory / "fluid", "blockMesh");
+}
+
+}  // namespace cocopp::testing
