@@ -6,6 +6,14 @@
 // Moving and sliding interfaces: with `coordinates: current` the mappers are rebuilt on the
 // current positions (initial coordinates plus the latest displacement each side knows of) every
 // time step or every coupling iteration (`rebuild`).
+//
+// A moving frame: `frame_velocity: [vx, vy, vz]` says that the inner solver describes its
+// body in a frame that moves at this velocity (in the inner solver's coordinates, before the
+// transformers) relative to the other solver's. Its points are then at their coordinates plus
+// displacement plus velocity x time, and the other solver sees that motion in the displacement.
+// A body drawn through a fixed tool (the wire drawing example) is solved with its pulled end
+// held: CalculiX's static steps converge in a few iterations where a prescribed pull of the end
+// makes their first increments diverge once the body yields (docs/wire-drawing.md).
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -27,10 +35,12 @@ class MappedSolverWrapper : public SolverWrapper {
         rebuild_(settings.get_choice("rebuild", "never", {"never", "time_step", "iteration"})),
         current_(settings.get_choice("coordinates", "initial", {"initial", "current"}) ==
                  "current"),
-        report_(settings.get<bool>("report_quality", false)) {
+        report_(settings.get<bool>("report_quality", false)),
+        time_(run.timestep_start * run.delta_t) {
     // Build one mapper now so that `cocopp check` validates the mapper settings.
     Mapper{input_settings_};
     Mapper{output_settings_};
+    read_frame_velocity(settings);
   }
 
   const std::string& name() const override { return name_; }
@@ -55,6 +65,7 @@ class MappedSolverWrapper : public SolverWrapper {
 
   void initialize_step(int step, double time) override {
     inner_->initialize_step(step, time);
+    time_ = time;
     if (rebuild_ == "time_step") build_mappers();
   }
 
@@ -133,30 +144,51 @@ class MappedSolverWrapper : public SolverWrapper {
             name_, to_part, variable, from_part, fmt::join(given, ", ")));
   }
 
+  void read_frame_velocity(const Settings& settings) {
+    if (!settings.has("frame_velocity")) return;
+    const auto velocity = settings.get<std::vector<double>>("frame_velocity", {});
+    if (velocity.size() != 3)
+      settings.fail("frame_velocity",
+                    fmt::format("give three components [vx, vy, vz], not {}", velocity.size()));
+    frame_velocity_ = Eigen::RowVector3d(velocity[0], velocity[1], velocity[2]);
+    if (!frame_velocity_.isZero() && rebuild_ == "never")
+      settings.fail("frame_velocity",
+                    "a moving frame needs mappings rebuilt as it moves: add 'rebuild: time_step'");
+  }
+
+  /// How far the inner solver's frame has moved by now.
+  Eigen::RowVector3d frame_offset() const { return frame_velocity_ * time_; }
+
   /// Initial coordinates of a model part, plus the latest displacement that either interface
-  /// of that side holds for it if `coordinates: current`.
-  Coordinates coordinates(const std::string& part, const Interface& a, const Interface& b) const {
-    const ModelPart* model_part = nullptr;
+  /// of that side holds for it if `coordinates: current`, plus the frame's motion for the
+  /// inner solver's parts.
+  Coordinates coordinates(const std::string& part, const Interface& a, const Interface& b,
+                          bool inner) const {
+    Coordinates points;
+    bool displaced = false;
     for (const Interface* interface : {&a, &b})
       for (const auto& p : interface->parts()) {
         if (p.model_part->name != part) continue;
-        model_part = p.model_part.get();
+        if (points.rows() == 0) points = p.model_part->coordinates;
         const auto& variables = p.variables;
-        if (current_ &&
-            std::find(variables.begin(), variables.end(), "displacement") != variables.end())
-          return model_part->coordinates + interface->values(part, "displacement");
+        if (current_ && !displaced &&
+            std::find(variables.begin(), variables.end(), "displacement") != variables.end()) {
+          points += interface->values(part, "displacement");
+          displaced = true;
+        }
       }
-    return model_part->coordinates;
+    if (inner) points.rowwise() += frame_offset();
+    return points;
   }
 
   void build_mappers() {
     const Interface& inner_in = inner_->input_interface();
     const Interface& inner_out = inner_->output_interface();
     for (auto& pair : pairs_) {
-      pair.input_mapper->initialize(coordinates(pair.outer_input_part, input_, output_),
-                                    coordinates(pair.inner_input_part, inner_in, inner_out));
-      pair.output_mapper->initialize(coordinates(pair.inner_output_part, inner_out, inner_in),
-                                     coordinates(pair.outer_output_part, output_, input_));
+      pair.input_mapper->initialize(coordinates(pair.outer_input_part, input_, output_, false),
+                                    coordinates(pair.inner_input_part, inner_in, inner_out, true));
+      pair.output_mapper->initialize(coordinates(pair.inner_output_part, inner_out, inner_in, true),
+                                     coordinates(pair.outer_output_part, output_, input_, false));
       if (report_) {
         report("input", pair.outer_input_part, pair.inner_input_part, *pair.input_mapper);
         report("output", pair.inner_output_part, pair.outer_output_part, *pair.output_mapper);
@@ -177,9 +209,12 @@ class MappedSolverWrapper : public SolverWrapper {
 
   void map_output(const Interface& inner_output) {
     for (const auto& pair : pairs_)
-      for (const auto& variable : variables_of(output_, pair.outer_output_part))
-        output_.values(pair.outer_output_part, variable) =
-            pair.output_mapper->map(inner_output.values(pair.inner_output_part, variable));
+      for (const auto& variable : variables_of(output_, pair.outer_output_part)) {
+        RowMatrix values = inner_output.values(pair.inner_output_part, variable);
+        if (variable == "displacement" && values.cols() == 3)
+          values.rowwise() += frame_offset();  // the other solver sees the frame's motion
+        output_.values(pair.outer_output_part, variable) = pair.output_mapper->map(values);
+      }
   }
 
   std::unique_ptr<SolverWrapper> inner_;
@@ -188,6 +223,8 @@ class MappedSolverWrapper : public SolverWrapper {
   std::string rebuild_;
   bool current_;
   bool report_;
+  double time_;  ///< of the time step being solved
+  Eigen::RowVector3d frame_velocity_ = Eigen::RowVector3d::Zero();
   Interface input_, output_;
   std::vector<Pair> pairs_;
 };

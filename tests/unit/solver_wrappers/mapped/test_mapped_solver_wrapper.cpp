@@ -51,12 +51,14 @@ class Fluid : public SolverWrapper {
   Interface input_, output_;
 };
 
-/// The wire: 41 points on z in [-0.5, 0.5] moving by kStepTranslation per step; it records the
-/// pressure it receives and reports its axial displacement.
+/// The wire: 41 points on z in [-0.5, 0.5] moving by `translation` (default kStepTranslation)
+/// per step; it records the pressure it receives and reports its axial displacement and a
+/// radial displacement of 0.001 per step.
 class TranslatingWire : public SolverWrapper {
  public:
   TranslatingWire(const Settings& settings, const RunSettings&)
-      : name_(settings.get<std::string>("name", "wire")) {
+      : name_(settings.get<std::string>("name", "wire")),
+        translation_(settings.get<double>("translation", kStepTranslation)) {
     auto part = line("wire", 41, -0.5, 0.5);
     input_ = Interface({{part, {"pressure"}}});
     output_ = Interface({{part, {"displacement"}}});
@@ -69,7 +71,9 @@ class TranslatingWire : public SolverWrapper {
   void initialize_step(int step, double) override { step_ = step; }
   const Interface& solve(const Interface& input) override {
     received = input.values("wire", "pressure");
-    output_.values("wire", "displacement").col(2).setConstant(kStepTranslation * step_);
+    auto displacement = output_.values("wire", "displacement");
+    displacement.col(1).setConstant(0.001 * step_);
+    displacement.col(2).setConstant(translation_ * step_);
     return output_;
   }
   void finalize_step() override {}
@@ -81,6 +85,7 @@ class TranslatingWire : public SolverWrapper {
 
  private:
   std::string name_;
+  double translation_;
   Interface input_, output_;
   int step_ = 0;
 };
@@ -123,6 +128,76 @@ rebuild: time_step
   // The wire went from half outside on one end to half outside on the other.
   EXPECT_GT(inside_total, 0);
   EXPECT_GT(outside_total, 0);
+}
+
+/// A mapped test_translating_wire held in its own frame, which moves at 0.05 per unit time
+/// along z, adopted by `fluid`; `components` masks the output mapper.
+std::unique_ptr<SolverWrapper> wire_in_moving_frame(Fluid& fluid, const std::string& components) {
+  const Settings settings = Settings::load_string(R"(type: mapped
+solver_wrapper: {type: test_translating_wire, translation: 0}
+input_mapper: {type: linear, directions: [z], max_distance: 0.01, unmatched: zero}
+output_mapper: {type: nearest, directions: [z], components: )" +
+                                                      components + R"(}
+coordinates: current
+rebuild: time_step
+frame_velocity: [0, 0, 0.05]
+)",
+                                                  "case.yaml");
+  auto mapped = SolverWrapperRegistry::instance().create(settings, RunSettings{});
+  settings.check_unused_keys();
+  mapped->initialize();
+  mapped->adopt_interfaces(fluid.output_interface(), fluid.input_interface());
+  return mapped;
+}
+
+TEST(MappedWrapper, MovingFrameShiftsTheMapping) {
+  // At time t the wire's points are at z0 + 0.05 t (exactly: the frame's motion is known, not
+  // lagged by a step as a displacement is), and the fluid takes only the radial displacement.
+  Fluid fluid;
+  auto mapped = wire_in_moving_frame(fluid, "[x, y]");
+  const TranslatingWire& wire = *TranslatingWire::last;
+  const Eigen::VectorXd z0 = wire.input_interface().parts()[0].model_part->coordinates.col(2);
+  for (int step = 1; step <= 12; ++step) {
+    const double time = 0.5 * step;
+    mapped->initialize_step(step, time);
+    const Interface& output = mapped->solve(fluid.output_interface());
+    for (Eigen::Index i = 0; i < z0.size(); ++i) {
+      const double z = z0(i) + 0.05 * time;
+      const bool inside = z >= -1e-12 && z <= 1.0 + 1e-12;
+      EXPECT_NEAR(wire.received(i, 0), inside ? fluid_pressure(z) : 0.0, 4e-6)
+          << "step " << step << ", z " << z;
+    }
+    const RowMatrix displacement = output.values("fluid", "displacement");
+    EXPECT_DOUBLE_EQ(displacement.col(1).minCoeff(), 0.001 * step);
+    EXPECT_DOUBLE_EQ(displacement.col(1).maxCoeff(), 0.001 * step);
+    EXPECT_EQ(displacement.col(2).cwiseAbs().maxCoeff(), 0.0);
+  }
+}
+
+TEST(MappedWrapper, MovingFrameIsInTheDisplacementTheOtherSolverSees) {
+  Fluid fluid;
+  auto mapped = wire_in_moving_frame(fluid, "[x, y, z]");
+  mapped->initialize_step(1, 2.0);
+  const RowMatrix displacement =
+      mapped->solve(fluid.output_interface()).values("fluid", "displacement");
+  EXPECT_DOUBLE_EQ(displacement.col(2).minCoeff(), 0.1);
+  EXPECT_DOUBLE_EQ(displacement.col(2).maxCoeff(), 0.1);
+  EXPECT_DOUBLE_EQ(displacement.col(1).maxCoeff(), 0.001);
+}
+
+TEST(MappedWrapper, MovingFrameWithoutRebuildIsRefused) {
+  const Settings settings = Settings::load_string(
+      "type: mapped\nsolver_wrapper: {type: test_translating_wire}\n"
+      "input_mapper: {type: nearest}\noutput_mapper: {type: nearest}\n"
+      "frame_velocity: [0, 0, 1]\n",
+      "case.yaml");
+  try {
+    SolverWrapperRegistry::instance().create(settings, RunSettings{});
+    FAIL() << "a moving frame without rebuilt mappings was accepted";
+  } catch (const CaseError& e) {
+    EXPECT_NE(std::string(e.what()).find("case.yaml:5"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("rebuild: time_step"), std::string::npos) << e.what();
+  }
 }
 
 TEST(MappedWrapper, MismatchedModelPartCountsAreReported) {
