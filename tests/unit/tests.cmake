@@ -7,7 +7,8 @@ cocopp_unit_test(core/case SOURCES test_settings.cpp test_registry.cpp LIBS coco
 
 # mappers
 cocopp_unit_test(mappers/interpolators
-                 SOURCES test_interpolators.cpp test_interpolator_checks.cpp LIBS cocopp_mappers)
+                 SOURCES test_interpolators.cpp test_interpolator_checks.cpp test_overlap.cpp
+                 LIBS cocopp_mappers)
 cocopp_unit_test(mappers/transformers SOURCES test_transformers.cpp LIBS cocopp_mappers)
 
 # solver wrappers
