@@ -18,6 +18,8 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <chrono>
+#include <stdexcept>
 
 #include "mappers/mapper.hpp"
 #include "solver_wrappers/solver_wrapper.hpp"
@@ -72,20 +74,39 @@ class MappedSolverWrapper : public SolverWrapper {
   const Interface& solve(const Interface& input) override {
     input_.set_data(input.data());
     if (rebuild_ == "iteration") build_mappers();
+    const auto start = Clock::now();
     Interface inner_input = inner_->input_interface();
     for (const auto& pair : pairs_)
       for (const auto& variable : variables_of(inner_input, pair.inner_input_part))
         inner_input.values(pair.inner_input_part, variable) =
             pair.input_mapper->map(input_.values(pair.outer_input_part, variable));
-    map_output(inner_->solve(inner_input));
+    map_seconds_ += seconds_since(start);
+    const Interface& inner_output = inner_->solve(inner_input);
+    const auto output_start = Clock::now();
+    map_output(inner_output);
+    map_seconds_ += seconds_since(output_start);
+    ++solves_;
     return output_;
   }
 
   void finalize_step() override { inner_->finalize_step(); }
   void output_step() override { inner_->output_step(); }
-  void finalize() override { inner_->finalize(); }
+  void finalize() override {
+    inner_->finalize();
+    if (builds_ > 1)  // rebuilt during the run: what the sliding interface costs
+      fmt::print(
+          "  mapping        : {}: mappers built {} times, {:.3g} ms each; mapping {:.3g} ms "
+          "per coupling iteration\n",
+          name_, builds_, 1e3 * build_seconds_ / builds_,
+          solves_ > 0 ? 1e3 * map_seconds_ / solves_ : 0.0);
+  }
 
  private:
+  using Clock = std::chrono::steady_clock;
+  static double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+  }
+
   /// The i-th model part of the coupler side maps to the i-th of the inner solver.
   struct Pair {
     std::string outer_input_part, inner_input_part, inner_output_part, outer_output_part;
@@ -181,7 +202,31 @@ class MappedSolverWrapper : public SolverWrapper {
     return points;
   }
 
+  /// Build (or rebuild) the mappers; an interpolator's complaint (no overlap, duplicate
+  /// points) is passed on with where the sides stand now.
   void build_mappers() {
+    const auto start = Clock::now();
+    try {
+      build_mappers_on_current_positions();
+      build_seconds_ += seconds_since(start);
+      ++builds_;
+    } catch (const std::invalid_argument& e) {
+      const std::string moved =
+          frame_velocity_.isZero()
+              ? std::string()
+              : fmt::format(", {}'s frame has moved by ({:g}, {:g}, {:g})", inner_->name(),
+                            frame_offset()(0), frame_offset()(1), frame_offset()(2));
+      throw std::runtime_error(fmt::format(
+          "mapped solver '{}': the mappers cannot be built on the positions at time {:g}{}: "
+          "{}{}",
+          name_, time_, moved, e.what(),
+          current_ ? "; on a sliding interface this means that one body has left the other's "
+                     "interface: shorten the run or lengthen the body"
+                   : ""));
+    }
+  }
+
+  void build_mappers_on_current_positions() {
     const Interface& inner_in = inner_->input_interface();
     const Interface& inner_out = inner_->output_interface();
     for (auto& pair : pairs_) {
@@ -225,6 +270,8 @@ class MappedSolverWrapper : public SolverWrapper {
   bool report_;
   double time_;  ///< of the time step being solved
   Eigen::RowVector3d frame_velocity_ = Eigen::RowVector3d::Zero();
+  double build_seconds_ = 0.0, map_seconds_ = 0.0;  ///< for the line at the end of the run
+  int builds_ = 0, solves_ = 0;
   Interface input_, output_;
   std::vector<Pair> pairs_;
 };

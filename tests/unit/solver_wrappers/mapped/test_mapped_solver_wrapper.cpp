@@ -185,6 +185,23 @@ TEST(MappedWrapper, MovingFrameIsInTheDisplacementTheOtherSolverSees) {
   EXPECT_DOUBLE_EQ(displacement.col(1).maxCoeff(), 0.001);
 }
 
+TEST(MappedWrapper, BodyThatLeavesTheInterfaceIsReportedWithTheTime) {
+  Fluid fluid;
+  auto mapped = wire_in_moving_frame(fluid, "[x, y]");
+  mapped->initialize_step(1, 1.0);  // the wire at z in [-0.45, 0.55]: overlaps
+  try {
+    mapped->initialize_step(2, 40.0);  // at z in [1.5, 2.5]: the fluid is at [0, 1]
+    FAIL() << "a wire outside the fluid's interface was mapped";
+  } catch (const std::runtime_error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("mapped solver 'wire'"), std::string::npos) << message;
+    EXPECT_NE(message.find("at time 40"), std::string::npos) << message;
+    EXPECT_NE(message.find("moved by (0, 0, 2)"), std::string::npos) << message;
+    EXPECT_NE(message.find("do not overlap"), std::string::npos) << message;
+    EXPECT_NE(message.find("left the other's interface"), std::string::npos) << message;
+  }
+}
+
 TEST(MappedWrapper, MovingFrameWithoutRebuildIsRefused) {
   const Settings settings = Settings::load_string(
       "type: mapped\nsolver_wrapper: {type: test_translating_wire}\n"
