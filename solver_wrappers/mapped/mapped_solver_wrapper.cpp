@@ -111,6 +111,10 @@ class MappedSolverWrapper : public SolverWrapper {
   struct Pair {
     std::string outer_input_part, inner_input_part, inner_output_part, outer_output_part;
     std::unique_ptr<Mapper> input_mapper, output_mapper;
+    /// Where the inner input part (e.g. a structure's faces) has no displacement of its own:
+    /// its points take that of the nearest point of the inner output part (its nodes), so
+    /// that with `coordinates: current` the faces move with the body.
+    std::unique_ptr<Mapper> follow_output;
   };
 
   static std::vector<std::string> part_names(const Interface& interface) {
@@ -144,11 +148,20 @@ class MappedSolverWrapper : public SolverWrapper {
                 inner_out[i],
                 outer_out[i],
                 std::make_unique<Mapper>(input_settings_),
-                std::make_unique<Mapper>(output_settings_)};
+                std::make_unique<Mapper>(output_settings_),
+                nullptr};
       check_variables(input_, pair.outer_input_part, inner_->input_interface(),
                       pair.inner_input_part);
       check_variables(inner_->output_interface(), pair.inner_output_part, output_,
                       pair.outer_output_part);
+      if (current_ && !has_displacement(inner_->input_interface(), pair.inner_input_part) &&
+          has_displacement(inner_->output_interface(), pair.inner_output_part)) {
+        pair.follow_output = std::make_unique<Mapper>(
+            Settings::load_string("type: nearest", "(the faces follow their nodes)"));
+        pair.follow_output->initialize(
+            initial_coordinates(inner_->output_interface(), pair.inner_output_part),
+            initial_coordinates(inner_->input_interface(), pair.inner_input_part));
+      }
       pairs_.push_back(std::move(pair));
     }
   }
@@ -180,24 +193,37 @@ class MappedSolverWrapper : public SolverWrapper {
   /// How far the inner solver's frame has moved by now.
   Eigen::RowVector3d frame_offset() const { return frame_velocity_ * time_; }
 
+  static bool has_displacement(const Interface& interface, const std::string& part) {
+    const auto variables = variables_of(interface, part);
+    return std::find(variables.begin(), variables.end(), "displacement") != variables.end();
+  }
+
+  static Coordinates initial_coordinates(const Interface& interface, const std::string& part) {
+    for (const auto& p : interface.parts())
+      if (p.model_part->name == part) return p.model_part->coordinates;
+    return {};
+  }
+
   /// Initial coordinates of a model part, plus the latest displacement that either interface
-  /// of that side holds for it if `coordinates: current`, plus the frame's motion for the
-  /// inner solver's parts.
+  /// of that side holds for it if `coordinates: current` (for an inner input part without
+  /// one: its nodes', see Pair::follow_output), plus the frame's motion for the inner solver's
+  /// parts.
   Coordinates coordinates(const std::string& part, const Interface& a, const Interface& b,
-                          bool inner) const {
+                          bool inner, const Pair* pair = nullptr) const {
     Coordinates points;
     bool displaced = false;
     for (const Interface* interface : {&a, &b})
       for (const auto& p : interface->parts()) {
         if (p.model_part->name != part) continue;
         if (points.rows() == 0) points = p.model_part->coordinates;
-        const auto& variables = p.variables;
-        if (current_ && !displaced &&
-            std::find(variables.begin(), variables.end(), "displacement") != variables.end()) {
+        if (current_ && !displaced && has_displacement(*interface, part)) {
           points += interface->values(part, "displacement");
           displaced = true;
         }
       }
+    if (!displaced && pair && pair->follow_output)
+      points += pair->follow_output->map(
+          inner_->output_interface().values(pair->inner_output_part, "displacement"));
     if (inner) points.rowwise() += frame_offset();
     return points;
   }
@@ -230,8 +256,9 @@ class MappedSolverWrapper : public SolverWrapper {
     const Interface& inner_in = inner_->input_interface();
     const Interface& inner_out = inner_->output_interface();
     for (auto& pair : pairs_) {
-      pair.input_mapper->initialize(coordinates(pair.outer_input_part, input_, output_, false),
-                                    coordinates(pair.inner_input_part, inner_in, inner_out, true));
+      pair.input_mapper->initialize(
+          coordinates(pair.outer_input_part, input_, output_, false),
+          coordinates(pair.inner_input_part, inner_in, inner_out, true, &pair));
       pair.output_mapper->initialize(coordinates(pair.inner_output_part, inner_out, inner_in, true),
                                      coordinates(pair.outer_output_part, output_, input_, false));
       if (report_) {

@@ -130,6 +130,75 @@ rebuild: time_step
   EXPECT_GT(outside_total, 0);
 }
 
+/// A wire like test_translating_wire, but as a structure solver presents it: loads on its faces
+/// (40 face centres), displacement at its nodes (41 points), two model parts.
+class FacesAndNodesWire : public SolverWrapper {
+ public:
+  FacesAndNodesWire(const Settings& settings, const RunSettings&)
+      : name_(settings.get<std::string>("name", "wire")) {
+    auto faces = line("faces", 40, -0.5 + 0.0125, 0.5 - 0.0125);
+    auto nodes = line("nodes", 41, -0.5, 0.5);
+    input_ = Interface({{faces, {"pressure"}}});
+    output_ = Interface({{nodes, {"displacement"}}});
+    last = this;
+  }
+  const std::string& name() const override { return name_; }
+  void initialize() override {}
+  const Interface& input_interface() const override { return input_; }
+  const Interface& output_interface() const override { return output_; }
+  void initialize_step(int step, double) override { step_ = step; }
+  const Interface& solve(const Interface& input) override {
+    received = input.values("faces", "pressure");
+    output_.values("nodes", "displacement").col(2).setConstant(kStepTranslation * step_);
+    return output_;
+  }
+  void finalize_step() override {}
+  void output_step() override {}
+  void finalize() override {}
+
+  static inline FacesAndNodesWire* last = nullptr;
+  RowMatrix received;
+
+ private:
+  std::string name_;
+  Interface input_, output_;
+  int step_ = 0;
+};
+
+COCOPP_REGISTER(SolverWrapperRegistry, "test_faces_and_nodes_wire", FacesAndNodesWire)
+
+TEST(MappedWrapper, FacesWithoutDisplacementMoveWithTheNodes) {
+  // The faces have no displacement of their own: with `coordinates: current` they take their
+  // nearest node's, so the loads follow the body, as for a CalculiX surface and node set.
+  const Settings settings = Settings::load_string(R"(type: mapped
+solver_wrapper: {type: test_faces_and_nodes_wire}
+input_mapper: {type: linear, directions: [z], max_distance: 0.01, unmatched: zero}
+output_mapper: {type: nearest, directions: [z], components: [y]}
+coordinates: current
+rebuild: time_step
+)",
+                                                  "case.yaml");
+  auto mapped = SolverWrapperRegistry::instance().create(settings, RunSettings{});
+  settings.check_unused_keys();
+  Fluid fluid;
+  mapped->initialize();
+  mapped->adopt_interfaces(fluid.output_interface(), fluid.input_interface());
+  const FacesAndNodesWire& wire = *FacesAndNodesWire::last;
+  const Eigen::VectorXd z0 = wire.input_interface().parts()[0].model_part->coordinates.col(2);
+  for (int step = 1; step <= 10; ++step) {
+    mapped->initialize_step(step, step);
+    mapped->solve(fluid.output_interface());
+    const double shift = kStepTranslation * (step - 1);  // the nodes' displacement so far
+    for (Eigen::Index i = 0; i < z0.size(); ++i) {
+      const double z = z0(i) + shift;
+      const bool inside = z >= -1e-12 && z <= 1.0 + 1e-12;
+      // Linear interpolation of z^2 midway between points 0.005 apart: h^2/4 = 6.25e-6.
+      EXPECT_NEAR(wire.received(i, 0), inside ? fluid_pressure(z) : 0.0, 6.3e-6)
+          << "step " << step << ", z " << z;
+    }
+  }
+}
+
 /// A mapped test_translating_wire held in its own frame, which moves at 0.05 per unit time
 /// along z, adopted by `fluid`; `components` masks the output mapper.
 std::unique_ptr<SolverWrapper> wire_in_moving_frame(Fluid& fluid, const std::string& components) {
