@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -161,6 +162,7 @@ void CalculixSolverWrapper::read_deck() {
           deck_->step().front().where, deck_->step_time_period(), run_.delta_t));
     check_dynamic_elements();
     loads_ = std::make_unique<calculix::InterfaceLoads>(*deck_, deck_->surface(surface_name_));
+    large_deformation_ = step_is_nlgeom(*deck_);
     if (loads_->faces().empty())
       throw calculix::DeckError("surface " + surface_name_ + " has no faces");
     interface_nodes_ = deck_->node_set(node_set_name_);
@@ -336,7 +338,9 @@ void CalculixSolverWrapper::run_ccx() {
     case Status::kNotConverged:
       fail(fmt::format(
           "solver '{}': ccx did not converge at {} ({}: the increment size fell below the "
-          "minimum); deck {}, last lines of {}:\n{}",
+          "minimum); what to change: a smaller time step (settings.delta_t), a smaller minimum "
+          "increment on the deck's *STATIC or *DYNAMIC line, or loads the structure can carry "
+          "(a coupled load far beyond its limit load diverges); deck {}, last lines of {}:\n{}",
           name_, position(), result.exit_description, deck, log_file_.string(), result.details));
     case Status::kDeckError:
       fail(fmt::format(
@@ -361,6 +365,7 @@ void CalculixSolverWrapper::finalize_step() {
   if (iteration_ == 0)
     fail(fmt::format("solver '{}': time step {} is committed without a coupling iteration", name_,
                      step_));
+  if (large_deformation_) move_faces_to_converged_state();
   // The last iteration is the converged one: its end state is the next step's start.
   if (state_reset_ == StateReset::kReplay) {
     const std::string loads = fmt::format("cocopp_loads_step{:05d}.inp", step_);
@@ -375,6 +380,24 @@ void CalculixSolverWrapper::finalize_step() {
                      restart.string(), step_));
   std::filesystem::rename(restart, file(kConvergedRestart));
   has_converged_restart_ = true;
+}
+
+bool CalculixSolverWrapper::step_is_nlgeom(const calculix::InputDeck& deck) {
+  std::string step_line = deck.step().front().text;
+  std::transform(step_line.begin(), step_line.end(), step_line.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+  return step_line.find("NLGEOM") != std::string::npos;
+}
+
+// ccx applies a pressure on the deformed faces in an NLGEOM step; the traction's nodal forces
+// are the wrapper's, so they follow the faces as the last converged step left them (the same
+// for every coupling iteration of the next step, as its restart is).
+void CalculixSolverWrapper::move_faces_to_converged_state() {
+  const RowMatrix& u = output_interface_.values(node_set_name_, "displacement");
+  calculix::NodeDisplacements displacement;
+  for (std::size_t i = 0; i < interface_nodes_.size(); ++i)
+    displacement[interface_nodes_[i]] = u.row(static_cast<Eigen::Index>(i)).transpose();
+  loads_->move_faces(displacement);
 }
 
 void CalculixSolverWrapper::output_step() {

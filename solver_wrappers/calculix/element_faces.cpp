@@ -124,7 +124,8 @@ Eigen::VectorXd shape_functions(Shape shape, double xi, double eta, Eigen::Matri
 
 }  // namespace
 
-FaceGeometry face_geometry(const InputDeck& deck, const ElementFace& face) {
+FaceGeometry face_geometry(const InputDeck& deck, const ElementFace& face,
+                           const NodeDisplacements* moved) {
   const Element& element = deck.element(face.element);
   const FaceTopology topo = topology(element.type, face.face, face.element);
   FaceGeometry geometry;
@@ -135,7 +136,12 @@ FaceGeometry face_geometry(const InputDeck& deck, const ElementFace& face) {
       throw DeckError("element " + std::to_string(face.element) + " (" + element.type +
                       ") has too few nodes for face S" + std::to_string(face.face));
     geometry.nodes.push_back(element.nodes[local]);
-    xyz.row(static_cast<Eigen::Index>(i)) = deck.node(element.nodes[local]).transpose();
+    Eigen::Vector3d position = deck.node(element.nodes[local]);
+    if (moved) {
+      const auto found = moved->find(element.nodes[local]);
+      if (found != moved->end()) position += found->second;
+    }
+    xyz.row(static_cast<Eigen::Index>(i)) = position.transpose();
   }
   // 3-point Gauss-Legendre in each direction: exact for the quadratic faces' weights on
   // straight-sided faces, and far below the .dat precision on curved ones.

@@ -8,6 +8,7 @@
 // weights are for the whole ring (2 pi r), as ccx takes axisymmetric *CLOADs per 360 degrees.
 #include <Eigen/Core>
 #include <cstdint>
+#include <map>
 #include <vector>
 
 #include "solver_wrappers/calculix/input_deck.hpp"
@@ -21,8 +22,13 @@ struct FaceGeometry {
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
 };
 
+/// Node displacements by node id (nodes not listed have not moved).
+using NodeDisplacements = std::map<std::int64_t, Eigen::Vector3d>;
+
 /// Throws DeckError for element types or face numbers the wrapper does not support (the
-/// message lists the supported ones).
-FaceGeometry face_geometry(const InputDeck& deck, const ElementFace& face);
+/// message lists the supported ones). With `moved`, the face as its nodes have moved: deck
+/// coordinates plus displacement.
+FaceGeometry face_geometry(const InputDeck& deck, const ElementFace& face,
+                           const NodeDisplacements* moved = nullptr);
 
 }  // namespace cocopp::calculix

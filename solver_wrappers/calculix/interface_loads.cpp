@@ -23,6 +23,11 @@ InterfaceLoads::InterfaceLoads(const InputDeck& deck, std::vector<ElementFace> f
   plane_ = !geometry_.empty() && geometry_.front().nodes.size() <= 3;
 }
 
+void InterfaceLoads::move_faces(const NodeDisplacements& displacement) {
+  for (std::size_t i = 0; i < faces_.size(); ++i)
+    geometry_[i] = face_geometry(deck_, faces_[i], &displacement);
+}
+
 std::map<std::int64_t, Eigen::Vector3d> InterfaceLoads::nodal_forces(
     const RowMatrix& traction) const {
   std::map<std::int64_t, Eigen::Vector3d> forces;

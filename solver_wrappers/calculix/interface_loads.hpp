@@ -31,6 +31,10 @@ class InterfaceLoads {
   const std::vector<ElementFace>& faces() const { return faces_; }
   const std::vector<FaceGeometry>& geometry() const { return geometry_; }
 
+  /// Take the faces as their nodes have moved (deck coordinates plus `displacement`): a
+  /// traction then acts on the current area, as ccx's pressure does in an NLGEOM step.
+  void move_faces(const NodeDisplacements& displacement);
+
   /// Nodal forces (global x, y, z) of a uniform traction per face (faces x 3).
   std::map<std::int64_t, Eigen::Vector3d> nodal_forces(const RowMatrix& traction) const;
 

@@ -230,6 +230,7 @@ TEST(CalculixCcx, NonConvergenceNamesTheTimeStepAndIteration) {
   EXPECT_CONTAINS(message, "ccx did not converge at time step 2, coupling iteration 2");
   EXPECT_CONTAINS(message, "exited with code 201");
   EXPECT_CONTAINS(message, "increment size smaller than minimum");
+  EXPECT_CONTAINS(message, "what to change: a smaller time step (settings.delta_t)");
 }
 
 }  // namespace

@@ -172,6 +172,29 @@ TEST_F(DeckTest, AxisymmetricEdgesAreRings) {
   EXPECT_NEAR(edge.weights[0], kPi, 1e-12);
 }
 
+// In an NLGEOM step the traction acts on the faces as they have moved: a bore pushed out by
+// d is the ring 2 pi (ri + d) L, and its nodal forces follow.
+TEST_F(DeckTest, MovedFacesCarryTheirTractionOnTheCurrentRing) {
+  SectorCylinder cylinder;
+  cylinder.element_type = "CAX8";
+  const InputDeck deck = read(cylinder.deck());
+  calculix::InterfaceLoads loads(deck, deck.surface("INNER"));
+  const double d = 0.05 * cylinder.ri;
+  calculix::NodeDisplacements displacement;
+  for (const auto& geometry : loads.geometry())
+    for (const auto node : geometry.nodes) displacement[node] = Eigen::Vector3d(d, 0.0, 0.0);
+  loads.move_faces(displacement);
+  double area = 0.0;
+  for (const auto& geometry : loads.geometry()) area += geometry.area;
+  const double ring = 2 * kPi * (cylinder.ri + d) * cylinder.length;
+  EXPECT_NEAR(area, ring, 1e-12 * ring);
+  RowMatrix traction = RowMatrix::Zero(static_cast<Eigen::Index>(loads.faces().size()), 3);
+  traction.col(1).setConstant(2.0);  // axial
+  double axial = 0.0;
+  for (const auto& [node, force] : loads.nodal_forces(traction)) axial += force.y();
+  EXPECT_NEAR(axial, 2.0 * ring, 1e-12 * ring);
+}
+
 TEST_F(DeckTest, LoadsFileHasPressuresAndRotatedNodalForces) {
   SectorCylinder cylinder;
   const InputDeck deck = read(cylinder.deck());
