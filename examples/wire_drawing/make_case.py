@@ -19,6 +19,7 @@ import sys
 import yaml
 
 HERE = pathlib.Path(__file__).resolve().parent
+TEXT_PARAMETERS = {"wire_element", "model"}  # every other parameter is a number
 
 
 def load_parameters(path, changes):
@@ -26,7 +27,7 @@ def load_parameters(path, changes):
     for section, values in parameters.items():
         for name, value in values.items():
             # YAML 1.1 reads 1.5e9 (no sign in the exponent) as text: say so, not crash later.
-            if not isinstance(value, (int, float)):
+            if not isinstance(value, (int, float)) and name not in TEXT_PARAMETERS:
                 sys.exit(f"make_case.py: {path}: {section}.{name}: '{value}' is not a number "
                          f"(write exponents with a sign: 1.5e+9)")
     for change in changes:
@@ -118,7 +119,10 @@ def die_schedule(p):
     closing = radius * (1.0 - math.sqrt(1.0 - p["die"]["reduction"]))
     held = time["held_steps"] * time["delta_t"]
     end = time["steps"] * time["delta_t"]
-    return [(0.0, 0.0), (held, 0.0), (end, -closing)]
+    if held >= end:
+        return [(0.0, 0.0), (end, 0.0)]
+    held_points = [(held, 0.0)] if held > 0 else []  # a table's times must increase
+    return [(0.0, 0.0)] + held_points + [(end, -closing)]
 
 
 def fluid_files(p, film):
@@ -214,10 +218,10 @@ def quad8(node, i, k):
 
 
 def wire_deck(p, refine):
-    """The wire as CAX8 elements (x = radius, y = axis): radial x axial elements of equal size,
-    its whole outer surface the interface (the wire slides: any part of it may be under the
-    film), pulled at the exit end (y max) by a prescribed axial displacement U t, the back force
-    as a uniform tension on the entry end (y min)."""
+    """The wire as CAX8 or CAX8R elements (x = radius, y = axis): radial x axial elements of
+    equal size, its whole outer surface the interface (the wire slides: any part of it may be
+    under the film), in a frame that moves with its exit end (y max) at the drawing speed, so
+    that end is held; the back force as a uniform tension on the entry end (y min)."""
     wire, time = p["wire"], p["time"]
     factor = 2 if refine else 1
     radial = factor * p["mesh"]["wire_radial_elements"]
@@ -231,14 +235,17 @@ def wire_deck(p, refine):
     def element(m, q):
         return 1 + m + radial * q
 
-    lines = ["** The drawn wire (make_case.py): axisymmetric CAX8, x = radius, y = axis (z).",
-             "*NODE, NSET=NALL"]
+    element_type = p["mesh"]["wire_element"]
+    if element_type not in ("CAX8", "CAX8R"):
+        sys.exit(f"make_case.py: mesh.wire_element is {element_type}: use CAX8 or CAX8R")
+    lines = [f"** The drawn wire (make_case.py): axisymmetric {element_type}, x = radius, "
+             "y = axis (z).", "*NODE, NSET=NALL"]
     for k in range(nk):
         for i in range(ni):
             if i % 2 + k % 2 <= 1:
                 lines.append(f"{node(i, k)}, {radius * i / (ni - 1):.13g}, "
                              f"{start + length * k / (nk - 1):.13g}, 0.")
-    lines.append("*ELEMENT, TYPE=CAX8, ELSET=EALL")
+    lines.append(f"*ELEMENT, TYPE={element_type}, ELSET=EALL")
     for q in range(axial):
         for m in range(radial):
             lines.append(f"{element(m, q)}, {quad8(node, 2 * m, 2 * q)}")
@@ -252,25 +259,27 @@ def wire_deck(p, refine):
     node_set("EXIT", [node(i, nk - 1) for i in range(ni)])
     lines.append("*SURFACE, NAME=SURFACE, TYPE=ELEMENT")  # r = R: edge S2 (nodes 2-3)
     lines.extend(f"{element(radial - 1, q)}, S2" for q in range(axial))
+    lines.append("*ELSET, ELSET=SKIN")  # the outer column: stresses at its integration points
+    lines.extend(f"{element(radial - 1, q)}," for q in range(axial))
     lines.append("*ELSET, ELSET=ENTRY")  # y min: edge S1 (nodes 1-2)
     lines.extend(f"{element(m, 0)}," for m in range(radial))
-    end = time["steps"] * time["delta_t"]
     lines += ["*MATERIAL, NAME=STEEL", "*ELASTIC", f"{wire['young']:.13g}, {wire['poisson']:.13g}",
               "*DENSITY", f"{wire['density']:.13g}", "*PLASTIC"]
     lines.extend(f"{stress:.13g}, {strain:.13g}" for stress, strain in hardening_table(wire))
     tension = wire["back_force"] / (math.pi * radius ** 2)
     lines += ["*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL",
-              "** The exit end moves at the drawing speed: u_z = U t (total time).",
-              "*AMPLITUDE, NAME=PULL, TIME=TOTAL TIME",
-              f"0., 0., {end:.13g}, {wire['drawing_speed'] * end:.13g}",
-              "*BOUNDARY", "AXIS, 1, 1", "*BOUNDARY, AMPLITUDE=PULL", "EXIT, 2, 2, 1.",
+              "** The wire is described in a frame that moves with its exit end at the drawing",
+              "** speed (case.yaml: frame_velocity), so the exit end is held here.",
+              "*BOUNDARY", "AXIS, 1, 1", "EXIT, 2, 2",
               "** Quasi-static: inertia is below 1e-2 of the stresses (docs/wire-drawing.md).",
               "*STEP, NLGEOM, INC=1000", "*STATIC",
               f"{time['delta_t']:.13g}, {time['delta_t']:.13g}, {time['delta_t'] * 1e-6:.13g}, "
               f"{time['delta_t']:.13g}",
               "** The back force: a uniform tension on the entry end (a negative pressure).",
               "*DLOAD", f"ENTRY, P1, {-tension:.13g}",
-              "*NODE FILE", "U", "*EL FILE", "S, PEEQ", "*END STEP"]
+              "*NODE FILE", "U, RF", "*EL FILE", "S, PEEQ",
+              "** Stresses at the integration points, for the check against the yield stress",
+              "*EL PRINT, ELSET=SKIN", "S, PEEQ", "*END STEP"]
     return "\n".join(lines) + "\n"
 
 
@@ -283,11 +292,11 @@ settings:
   delta_t: {time['delta_t']:.17g}
   number_of_timesteps: {time['steps']}
 coupled_solver:
-  type: iqni                      # IQN-ILS, as the paper
+  type: iqni                      # interface quasi-Newton, as the paper
   omega: 0.01
   model:
-    type: ls
-    q: 0                          # the paper's IQN-ILS: no reuse of earlier steps
+    type: {p['coupling']['model']}                      # ls: IQN-ILS (the paper's); mvmf: IQN-MVJ
+    q: {p['coupling']['reuse_steps']}                         # earlier steps whose secant information is reused
   predictor:
     type: linear
   convergence_criterion:
@@ -296,7 +305,7 @@ coupled_solver:
       - type: absolute_norm       # the paper's 0.01 um on the 2-norm of the displacement residual
         tolerance: 1.0e-8
       - type: iteration_limit
-        maximum: 20
+        maximum: {p['coupling']['max_iterations']}
 solver_wrappers:
   - type: openfoam                # F: the film's wire wall displacement -> its loads
     name: film
@@ -307,18 +316,19 @@ solver_wrappers:
     name: wire
     coordinates: current          # a sliding interface: map on the current positions ...
     rebuild: time_step            # ... every time step
+    frame_velocity: [0, {p['wire']['drawing_speed']:.17g}, 0]       # the wire's frame moves with its exit end
     solver_wrapper:
       type: calculix
       working_directory: structure
       input_file: wire.inp
       interface_surface: SURFACE
       interface_node_set: SURFACEN
+      threads: {p['calculix']['threads']}                    # the film waits while the wire is solved
       timeout: 600
-    input_mapper:                 # film face centres (axis z, radial y) -> wire edges (r, axis)
-      type: linear
-      directions: [y]             # along the axis only
-      unmatched: zero             # wire faces outside the film: ambient, no load
-      max_distance: 1.0e-5
+    input_mapper:                 # film faces (axis z, radial y) -> wire faces (r, axis)
+      type: overlap               # each wire face: the length-weighted mean of the film faces it
+      directions: [y]             # overlaps along the axis, so the film's load is conserved; zero
+                                  # (ambient) for the part of a wire face outside the film
       transformers:
         - {{type: permutation, permutation: [1, 2, 0]}}   # film (x, y, z) -> (y, z, x)
     output_mapper:                # wire surface nodes (r, axis) -> film wall points (wedge)
@@ -350,6 +360,9 @@ def main():
     (output / "structure").mkdir(parents=True, exist_ok=True)
     (output / "structure" / "wire.inp").write_text(wire_deck(p, args.refine))
     (output / "case.yaml").write_text(case_file(p))
+    # What the case was made from, for plot.py and checks.py.
+    (output / "made_with.yaml").write_text(yaml.safe_dump({"parameters": p,
+                                                            "refine": args.refine}))
     print(f"make_case.py: film of {film.radial_cells} x {film.entry_cells + film.bearing_cells} "
           f"cells in {output / 'fluid'}, wire deck {output / 'structure' / 'wire.inp'}")
 

@@ -3,9 +3,11 @@
 
     plot.py [CASE_DIR] [-o wire-drawing.png] [--parameters parameters.yaml]
 
-CASE_DIR is the case directory run.sh wrote (default results/case; it holds results/case.h5).
-Four panels: the film thickness and the wire's radial displacement along the die, the pressure
-and the wire's shear along the die (before the die closes and at the last step), the coupling
+CASE_DIR is the case directory run.sh wrote (default results/case; it holds results/case.h5
+and the wire's structure/results/step_NNNNN.frd). Six panels: the equivalent (von Mises) and
+the hardened yield stress along the wire's surface, the film thickness and the wire's radial
+displacement along the die, the pressure and the wire's shear along the die (each at the last
+step with the die held and at the last step), the drawing force per step, the coupling
 residuals of the last 5 time steps per iteration, and the coupling iterations per step against
 the paper's average of 5.33.
 """
@@ -20,38 +22,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import make_case  # noqa: E402
+from wire_results import (Frd, exit_force, film_profile, loads_profile, made_with,  # noqa: E402
+                          step_files, surface)
 
 HERE = pathlib.Path(__file__).resolve().parent
 PAPER_ITERATIONS = 5.33
-
-
-def die_displacement(schedule, t):
-    times, values = zip(*schedule)
-    return float(np.interp(t, times, values))
-
-
-def film_profile(f, film, schedule, row):
-    """(z, film thickness, wire radial displacement) along the film's wall points at `row`."""
-    points = f["x/wire_points/coordinates"][:]
-    u = f["x/wire_points/displacement"][row]
-    radius = np.hypot(points[:, 0], points[:, 1])
-    radial = (points[:, 0] * u[:, 0] + points[:, 1] * u[:, 1]) / radius
-    z = points[:, 2]
-    t = f["steps/time"][row]
-    die = np.array([film.die_radius(zi) for zi in z]) + die_displacement(schedule, t)
-    thickness = die - (film.radius + radial)
-    order = np.argsort(z)
-    # Each axial position has a point on both wedge planes: one is enough.
-    keep = order[::2]
-    return z[keep], thickness[keep], radial[keep]
-
-
-def loads_profile(f, row):
-    centres = f["y/wire_faces/coordinates"][:]
-    order = np.argsort(centres[:, 2])
-    pressure = f["y/wire_faces/pressure"][row][:, 0]
-    shear = f["y/wire_faces/traction"][row][:, 2]
-    return centres[order, 2], pressure[order], shear[order]
 
 
 def main():
@@ -63,8 +38,8 @@ def main():
     parser.add_argument("--parameters", default=str(HERE / "parameters.yaml"))
     args = parser.parse_args()
     case = pathlib.Path(args.case)
-    p = make_case.load_parameters(args.parameters, [])
-    film = make_case.Film(p, refine=False)
+    p, refine = made_with(case, args.parameters)
+    film = make_case.Film(p, refine)
     schedule = make_case.die_schedule(p)
     output = pathlib.Path(args.output) if args.output else case / "wire-drawing.png"
 
@@ -74,8 +49,33 @@ def main():
         held = min(p["time"]["held_steps"], len(steps)) - 1
         last = len(steps) - 1
         rows = sorted({held, last})
-        fig, axes = plt.subplots(2, 2, figsize=(12, 8.5))
-        (thick_ax, load_ax), (residual_ax, iteration_ax) = axes
+        fig, axes = plt.subplots(3, 2, figsize=(12, 12.5))
+        (stress_ax, force_ax), (thick_ax, load_ax), (residual_ax, iteration_ax) = axes
+        frds = step_files(case)
+        times = f["steps/time"][:]
+        for row, style in zip(rows, ["-", "--"]):
+            if int(steps[row]) not in frds:
+                continue
+            profile = surface(Frd(frds[int(steps[row])], {"DISP", "STRESS", "PE"}), p["wire"],
+                              float(times[row]))
+            near = (profile["z"] > -1e-3) & (profile["z"] < film.length + 2e-3)
+            z = 1e3 * profile["z"][near]
+            stress_ax.plot(z, 1e-6 * profile["von_mises"][near], "C0" + style,
+                           label=f"von Mises, step {steps[row]}")
+            stress_ax.plot(z, 1e-6 * profile["yield_stress"][near], "C3" + style,
+                           label=f"yield stress, step {steps[row]}")
+        stress_ax.axvspan(0, 1e3 * film.length, color="0.9", zorder=0)
+        stress_ax.set(xlabel="z along the die [mm] (grey: under the film)",
+                      ylabel="stress [MPa]",
+                      title="equivalent and yield stress at the wire's surface (nodal)")
+        stress_ax.legend(fontsize=8)
+
+        force_steps = sorted(s for s in frds if s in set(int(v) for v in steps))
+        forces = [exit_force(Frd(frds[s], {"FORC"}), p["wire"]) for s in force_steps]
+        force_ax.plot(force_steps, forces, "o-", ms=3, label="drawing force (exit end)")
+        force_ax.axhline(p["wire"]["back_force"], color="k", ls=":", label="back force")
+        force_ax.set(xlabel="time step", ylabel="force [N]", title="drawing force per step")
+        force_ax.legend(fontsize=8)
 
         disp_ax = thick_ax.twinx()
         for row, style in zip(rows, ["-", "--"]):

@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Coupling algorithms on the first 20 steps of the wire drawing case (bench.yaml): writes the
+# case into results/bench_case, meshes the film and runs `cocopp bench` (results/bench/).
+#   examples/wire_drawing/bench.sh [make_case.py options, e.g. --set mesh.film_axial_cells=50]
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+root="$(cd "$here/../.." && pwd)"
+case_dir="$here/results/bench_case"
+rm -rf "$case_dir" "$here/results/bench"
+/usr/bin/python3 "$here/make_case.py" --output "$case_dir" "$@"
+export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
+(cd "$case_dir/fluid" && blockMesh > log.blockMesh 2>&1) ||
+  { echo "bench.sh: blockMesh failed, see $case_dir/fluid/log.blockMesh" >&2; exit 1; }
+exec "$root/build/bin/cocopp" bench "$here/bench.yaml"

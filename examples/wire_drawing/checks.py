@@ -1,0 +1,160 @@
+#!/usr/bin/python3
+"""The checks an expert makes on a wire drawing run (docs/wire-drawing.md), as numbers.
+
+    checks.py [CASE_DIR] [--step N]
+
+CASE_DIR is the case directory run.sh wrote (default results/case). The checks are made at the
+last time step (or --step N) from the coupler's results file and the wire's .frd file of that
+step; they are printed and written to CASE_DIR/checks.json:
+- coupling iterations per step against the paper's 5.33;
+- film thickness at the end of the die's entry cone against Wilson and Walowit's inlet-zone
+  estimate h0 = 3 eta U / ((Y - sigma_b) tan alpha);
+- drawing stress (exit force over the drawn cross section) against the ideal-work estimate
+  Y ln(A0/A1) + sigma_b and Sachs' estimate with the friction the film computed;
+- axial force balance of the wire: exit force = back force - axial film force, with the film
+  force integrated on the film's faces (shear, and the pressure on the wall's slope), and, at
+  the last step, as ccx applied it on the wire's moved surface (structure/cocopp_loads.inp);
+- the film's load against what reached the wire (last step): total shear and pressure;
+- the largest ratio of equivalent (von Mises) stress to hardened yield stress at the surface.
+"""
+import argparse
+import json
+import math
+import pathlib
+
+import h5py
+import numpy as np
+
+import make_case
+from wire_results import (Frd, exit_force, film_forces, film_profile, integration_point_check,
+                          made_with, step_files, surface, wire_forces)
+
+HERE = pathlib.Path(__file__).resolve().parent
+PAPER_ITERATIONS = 5.33
+
+
+def sachs_drawing_stress(yield_stress, back_stress, area_ratio, friction, half_angle):
+    """Sachs' drawing stress for a conical die with Coulomb friction mu: B = mu cot(alpha)."""
+    b = friction / math.tan(half_angle)
+    if b < 1e-9:
+        return yield_stress * math.log(1 / area_ratio) + back_stress
+    return (yield_stress * (1 + b) / b * (1 - area_ratio ** b)
+            + back_stress * area_ratio ** b)
+
+
+def run_checks(case, p, refine, step=None):
+    wire, die, lubricant = p["wire"], p["die"], p["lubricant"]
+    film = make_case.Film(p, refine)
+    schedule = make_case.die_schedule(p)
+    results = {}
+    with h5py.File(case / "results" / "case.h5", "r") as f:
+        steps = f["steps/step"][:]
+        row = len(steps) - 1 if step is None else int(np.flatnonzero(steps == step)[0])
+        time = float(f["steps/time"][row])
+        iterations = f["steps/iterations"][:]
+        results["steps"] = int(len(steps))
+        results["step"] = int(steps[row])
+        results["iterations_per_step"] = float(np.mean(iterations))
+        results["paper_iterations_per_step"] = PAPER_ITERATIONS
+
+        z, thickness, radial = film_profile(f, film, schedule, row)
+        results["film_thickness_at_cone_end"] = float(np.interp(film.entry, z, thickness))
+        results["film_thickness_min"] = float(np.min(thickness))
+        back_stress = wire["back_force"] / (math.pi * wire["radius"] ** 2)
+        alpha = math.radians(die["half_angle_degrees"])
+        results["wilson_walowit_h0"] = (3 * lubricant["viscosity"] * wire["drawing_speed"]
+                                        / ((wire["yield_stress"] - back_stress) * math.tan(alpha)))
+        forces = film_forces(f, film, schedule, row)
+    results.update({f"film_{k}": v for k, v in forces.items()})
+
+    frd_path = step_files(case)[results["step"]]
+    frd = Frd(frd_path)
+    pull = exit_force(frd, wire)
+    results["exit_force"] = pull
+    # With the film's loads integrated on the film (the pressure's axial part from the slope of
+    # the film's wall points, which only approximates the wire's wavy surface under the die).
+    film_axial = forces["shear_axial"] + forces["pressure_axial"]
+    results["force_balance_error_film"] = (pull - (wire["back_force"] - film_axial)) / pull
+    if results["step"] == results["steps"]:
+        # The loads ccx applied in the last coupling iteration, on the wire's moved surface.
+        applied = wire_forces(case, frd)
+        results.update({f"wire_{k}": v for k, v in applied.items()})
+        wire_axial = applied["shear_axial"] + applied["pressure_axial"]
+        results["force_balance_error"] = (pull - (wire["back_force"] - wire_axial)) / pull
+        results["transfer_error_shear"] = applied["shear_axial"] / forces["shear_axial"] - 1
+        results["transfer_error_pressure"] = (applied["pressure_total"]
+                                              / forces["pressure_total"] - 1)
+
+    profile = surface(frd, wire, time)
+    downstream = profile["z"] > film.length + 1e-3  # past the die, elastically recovered
+    drawn_radius = wire["radius"] + float(np.mean(profile["u_r"][downstream]))
+    area_ratio = (drawn_radius / wire["radius"]) ** 2
+    results["reduction"] = 1 - area_ratio
+    results["drawing_stress"] = pull / (math.pi * drawn_radius ** 2)
+    mean_yield = float(np.mean(profile["yield_stress"][downstream]))
+    results["mean_yield_stress_drawn"] = mean_yield
+    results["ideal_work_stress"] = (0.5 * (wire["yield_stress"] + mean_yield)
+                                    * math.log(1 / area_ratio) + back_stress)
+    results["ideal_work_stress_nominal"] = (wire["yield_stress"] * math.log(1 / (1 - die["reduction"]))
+                                            + back_stress)
+    friction = forces["shear_total"] / forces["pressure_total"] if forces["pressure_total"] > 0 else 0
+    results["friction_coefficient"] = friction
+    results["sachs_stress"] = sachs_drawing_stress(0.5 * (wire["yield_stress"] + mean_yield),
+                                                   back_stress, area_ratio, friction, alpha)
+    at_points = integration_point_check(frd_path.with_suffix(".dat"), wire)
+    if at_points:
+        results["max_equivalent_over_yield"], results["max_plastic_strain_surface"] = at_points
+        results["equivalent_stress_at"] = "integration points of the outer elements"
+    else:  # nodal values are extrapolated from the integration points: they overshoot
+        ratio = profile["von_mises"] / profile["yield_stress"]
+        results["max_equivalent_over_yield"] = float(np.max(ratio))
+        results["max_plastic_strain_surface"] = float(np.max(profile["peeq"]))
+        results["equivalent_stress_at"] = "surface nodes (extrapolated)"
+    return results
+
+
+def report(results):
+    r = results
+    lines = [
+        f"step {r['step']} of {r['steps']}",
+        f"coupling iterations per step   {r['iterations_per_step']:.2f} (paper {r['paper_iterations_per_step']})",
+        f"film at the end of the cone    {1e6 * r['film_thickness_at_cone_end']:.2f} um "
+        f"(Wilson-Walowit h0 {1e6 * r['wilson_walowit_h0']:.2f} um); thinnest {1e6 * r['film_thickness_min']:.2f} um",
+        f"reduction of the cross section {100 * r['reduction']:.2f} %",
+        f"drawing force                  {r['exit_force']:.1f} N",
+        f"drawing stress                 {1e-6 * r['drawing_stress']:.1f} MPa (ideal work "
+        f"{1e-6 * r['ideal_work_stress']:.1f} MPa for this reduction, {1e-6 * r['ideal_work_stress_nominal']:.1f} "
+        f"MPa nominal; Sachs {1e-6 * r['sachs_stress']:.1f} MPa with mu {r['friction_coefficient']:.4f})",
+        f"axial force balance, film      {100 * r['force_balance_error_film']:+.3f} % (film: shear "
+        f"{r['film_shear_axial']:.1f} N, pressure {r['film_pressure_axial']:.1f} N)",
+        f"equivalent / yield at surface  {r['max_equivalent_over_yield']:.4f} at most "
+        f"(largest plastic strain {r['max_plastic_strain_surface']:.4f}; {r['equivalent_stress_at']})",
+    ]
+    if "force_balance_error" in r:
+        lines += [
+            f"axial force balance, wire      {100 * r['force_balance_error']:+.4f} % (as applied: "
+            f"shear {r['wire_shear_axial']:.2f} N, pressure {r['wire_pressure_axial']:.2f} N)",
+            f"film load reaching the wire    shear {r['transfer_error_shear']:+.2e}, pressure "
+            f"{r['transfer_error_pressure']:+.2e} (relative difference)"]
+    return "\n".join(lines)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("case", nargs="?", default=str(HERE / "results" / "case"))
+    parser.add_argument("--step", type=int, default=None, help="the time step (default: the last)")
+    parser.add_argument("--parameters", default=str(HERE / "parameters.yaml"),
+                        help="for a case without made_with.yaml")
+    parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                        help="for a case without made_with.yaml: as make_case.py --set")
+    args = parser.parse_args()
+    case = pathlib.Path(args.case)
+    p, refine = made_with(case, args.parameters, args.set)
+    results = run_checks(case, p, refine, args.step)
+    print(report(results))
+    (case / "checks.json").write_text(json.dumps(results, indent=2) + "\n")
+
+
+if __name__ == "__main__":
+    main()

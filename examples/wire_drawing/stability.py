@@ -1,0 +1,33 @@
+#!/usr/bin/python3
+"""Tabulate the wire drawing stability runs (stability.sh): how each ended, iterations per step
+and the message of a run that stopped.
+
+    stability.py [results/stability]
+"""
+import json
+import pathlib
+import sys
+
+HERE = pathlib.Path(__file__).resolve().parent
+
+
+def main():
+    folder = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else HERE / "results" / "stability")
+    rows = ["| variant | status | steps | iterations per step (max) | wall time | message |",
+            "|---|---|---|---|---|---|"]
+    for summary_file in sorted(folder.glob("*/results/case.summary.json")):
+        s = json.loads(summary_file.read_text())
+        name = summary_file.parent.parent.name
+        per_step = s.get("iterations_per_step", [])
+        iterations = (f"{sum(per_step) / len(per_step):.2f} ({max(per_step)})" if per_step else "-")
+        message = (s.get("message") or "").splitlines()
+        rows.append(f"| {name} | {s.get('status', '?')} | {s.get('last_step', 0)} / "
+                    f"{s.get('number_of_timesteps', '?')} | {iterations} | "
+                    f"{s.get('wall_time', 0):.0f} s | {message[0] if message else ''} |")
+    table = "\n".join(rows)
+    print(table)
+    (folder / "stability.md").write_text(table + "\n")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,251 @@
+"""A wire drawing run's results, for plot.py and checks.py: the film side from the coupler's
+results file (results/case.h5) and the wire from CalculiX's .frd files (the calculix wrapper
+keeps one per time step in structure/results/step_NNNNN.frd).
+
+ccx writes an axisymmetric model's results on the 2D nodes: x is the radius, y the axis and z
+the hoop direction; stresses are extrapolated from the integration points to the nodes.
+"""
+import pathlib
+
+import numpy as np
+import yaml
+
+import make_case
+
+
+class Frd:
+    """The node coordinates and the last result block of each name (DISP, STRESS, PE, FORC) of
+    one .frd file; `values(name)` is indexed like `ids` and `coordinates`."""
+
+    def __init__(self, path, names=None):
+        """Read `path`; `names` (e.g. {"FORC"}) limits the result blocks read, for speed."""
+        self.path = pathlib.Path(path)
+        nodes, blocks = {}, {}
+        with open(self.path) as f:
+            lines = iter(f)
+            for line in lines:
+                if line.startswith("    2C"):
+                    for line in lines:
+                        if line.startswith(" -3"):
+                            break
+                        nodes[int(line[3:13])] = [float(line[13 + 12 * k:25 + 12 * k])
+                                                  for k in range(3)]
+                elif line.startswith(" -4"):
+                    name = line[5:13].strip()
+                    wanted = names is None or name in names
+                    rows = {}
+                    for line in lines:
+                        if line.startswith(" -3"):
+                            break
+                        if wanted and line.startswith(" -1"):
+                            count = (len(line.rstrip("\n")) - 13) // 12
+                            rows[int(line[3:13])] = [float(line[13 + 12 * k:25 + 12 * k])
+                                                     for k in range(count)]
+                    if wanted:
+                        blocks[name] = rows
+        if not nodes:
+            raise ValueError(f"{self.path}: no node coordinates (is it a CalculiX .frd file?)")
+        self.ids = np.array(sorted(nodes))
+        self.coordinates = np.array([nodes[i] for i in self.ids])
+        self._blocks = blocks
+
+    def has(self, name):
+        return name in self._blocks
+
+    def values(self, name):
+        if name not in self._blocks:
+            raise KeyError(f"{self.path}: no {name} block (request it in *NODE FILE or *EL FILE)")
+        rows = self._blocks[name]
+        width = len(next(iter(rows.values())))
+        return np.array([rows.get(i, [np.nan] * width) for i in self.ids])
+
+
+def dat_block(path, title):
+    """Rows of the last block in a ccx .dat file whose header starts with `title` (e.g.
+    "stresses" for an *EL PRINT of S): one list of numbers per line, element and integration
+    point first. None if the file has no such block."""
+    block, inside = None, False
+    with open(path) as f:
+        for line in f:
+            if line.startswith(" " + title):
+                block, inside = [], True
+            elif inside and line.strip():
+                block.append([float(v) for v in line.split()])
+            elif inside and block:
+                inside = False
+    return block
+
+
+def integration_point_check(dat_path, wire):
+    """Equivalent stress over hardened yield stress at the integration points of the *EL PRINT
+    of S and PEEQ (make_case.py prints the outer column of elements, SKIN): the largest ratio
+    and the largest plastic strain, or None if the .dat file has no such print."""
+    stresses = dat_block(dat_path, "stresses")
+    strains = dat_block(dat_path, "equivalent plastic strain")
+    if not stresses or not strains:
+        return None
+    stress = np.array([row[2:8] for row in stresses])
+    peeq = np.array([row[2] for row in strains])
+    ratio = von_mises(stress) / swift_yield_stress(wire, peeq)
+    return float(np.max(ratio)), float(np.max(peeq))
+
+
+def von_mises(stress):
+    """Equivalent stress of rows (sxx, syy, szz, sxy, syz, szx)."""
+    sxx, syy, szz, sxy, syz, szx = stress.T
+    return np.sqrt(0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2)
+                   + 3.0 * (sxy ** 2 + syz ** 2 + szx ** 2))
+
+
+def swift_yield_stress(wire, plastic_strain):
+    """The hardened yield stress of make_case.hardening_table's law."""
+    sigma0, n, e0 = wire["yield_stress"], wire["hardening"], wire["hardening_reference_strain"]
+    return sigma0 * (1.0 + np.asarray(plastic_strain) / e0) ** n
+
+
+def surface(frd, wire, time):
+    """Along the wire's surface (reference radius = wire radius), sorted by the axial position
+    at `time` in the die's frame (the wire's frame moves with its exit end at the drawing
+    speed): z, radial displacement, equivalent stress, yield stress and plastic strain."""
+    radius = wire["radius"]
+    on_surface = np.abs(frd.coordinates[:, 0] - radius) < 1e-9 * max(radius, 1.0)
+    u = frd.values("DISP")[on_surface]
+    z = frd.coordinates[on_surface, 1] + u[:, 1] + wire["drawing_speed"] * time
+    stress = von_mises(frd.values("STRESS")[on_surface])
+    peeq = frd.values("PE")[on_surface, 0]
+    order = np.argsort(z)
+    return {"z": z[order], "u_r": u[order, 0], "von_mises": stress[order],
+            "yield_stress": swift_yield_stress(wire, peeq)[order], "peeq": peeq[order]}
+
+
+def exit_force(frd, wire):
+    """The axial reaction force at the exit end, the drawing force (ccx gives an axisymmetric
+    model's reaction forces for the whole circumference)."""
+    end = wire["start"] + wire["length"]
+    at_exit = np.abs(frd.coordinates[:, 1] - end) < 1e-9
+    return float(np.sum(frd.values("FORC")[at_exit, 1]))
+
+
+def step_files(case):
+    """The .frd files of a run, by time step."""
+    folder = pathlib.Path(case) / "structure" / "results"
+    return {int(p.stem.split("_")[1]): p for p in sorted(folder.glob("step_*.frd"))}
+
+
+def die_displacement(schedule, t):
+    times, values = zip(*schedule)
+    return float(np.interp(t, times, values))
+
+
+def film_profile(f, film, schedule, row):
+    """(z, film thickness, wire radial displacement) along the film's wall points at `row`."""
+    points = f["x/wire_points/coordinates"][:]
+    u = f["x/wire_points/displacement"][row]
+    radius = np.hypot(points[:, 0], points[:, 1])
+    radial = (points[:, 0] * u[:, 0] + points[:, 1] * u[:, 1]) / radius
+    z = points[:, 2]
+    t = f["steps/time"][row]
+    die = np.array([film.die_radius(zi) for zi in z]) + die_displacement(schedule, t)
+    thickness = die - (film.radius + radial)
+    order = np.argsort(z)
+    # Each axial position has a point on both wedge planes: one is enough.
+    keep = order[::2]
+    return z[keep], thickness[keep], radial[keep]
+
+
+def loads_profile(f, row):
+    centres = f["y/wire_faces/coordinates"][:]
+    order = np.argsort(centres[:, 2])
+    pressure = f["y/wire_faces/pressure"][row][:, 0]
+    shear = f["y/wire_faces/traction"][row][:, 2]
+    return centres[order, 2], pressure[order], shear[order]
+
+
+def face_lengths(z):
+    """Lengths of faces with centres z along the axis that tile a line (equal neighbours)."""
+    order = np.argsort(z)
+    middles = 0.5 * (z[order][1:] + z[order][:-1])
+    bounds = np.concatenate([[2 * z[order][0] - middles[0]], middles,
+                             [2 * z[order][-1] - middles[-1]]])
+    lengths = np.empty_like(z)
+    lengths[order] = np.diff(bounds)
+    return lengths
+
+
+def film_forces(f, film, schedule, row):
+    """The film's load on the wire at `row`, over the whole circumference: (axial force of the
+    shear, axial force of the pressure on the sloped wire surface, radial load = integral of
+    the pressure, integral of the shear magnitude). The wire surface's slope comes from its
+    radial displacement at the film's wall points."""
+    z, pressure, shear = loads_profile(f, row)
+    wall_z, _, radial = film_profile(f, film, schedule, row)
+    r = film.radius + np.interp(z, wall_z, radial)
+    slope = np.interp(z, wall_z, np.gradient(film.radius + radial, wall_z))
+    area = 2 * np.pi * r * face_lengths(z)  # projected on the axis
+    return {"shear_axial": float(np.sum(shear * area)),
+            "pressure_axial": float(np.sum(pressure * slope * area)),
+            "pressure_total": float(np.sum(pressure * area * np.sqrt(1 + slope ** 2))),
+            "shear_total": float(np.sum(np.abs(shear) * area))}
+
+
+def made_with(case, parameters, changes=()):
+    """The parameters a case was made from and whether it was refined: make_case.py's
+    made_with.yaml in the case, else the parameter file with `changes` (as --set)."""
+    record = pathlib.Path(case) / "made_with.yaml"
+    if record.exists():
+        data = yaml.safe_load(record.read_text())
+        return data["parameters"], data["refine"]
+    return make_case.load_parameters(parameters, list(changes)), False
+
+
+def deck_elements(deck):
+    """Element id -> node ids of a ccx deck's *ELEMENT cards (one line per element)."""
+    elements, inside = {}, False
+    with open(deck) as f:
+        for line in f:
+            if line.startswith("*"):
+                inside = line.upper().startswith("*ELEMENT")
+                continue
+            if inside and line.strip():
+                ids = [int(v) for v in line.replace(",", " ").split()]
+                elements[ids[0]] = ids[1:]
+    return elements
+
+
+def applied_loads(loads_file):
+    """The interface loads of a coupling iteration as the calculix wrapper wrote them:
+    {element: pressure} of the *DLOAD P2 lines and the summed *CLOAD per direction."""
+    pressures, forces, mode = {}, {1: 0.0, 2: 0.0}, None
+    with open(loads_file) as f:
+        for line in f:
+            if line.startswith("*"):
+                mode = line[1:6].upper()
+                continue
+            fields = [v.strip() for v in line.split(",")]
+            if mode == "DLOAD" and len(fields) == 3:
+                pressures[int(fields[0])] = float(fields[2])
+            elif mode == "CLOAD" and len(fields) == 3:
+                forces[int(fields[1])] += float(fields[2])
+    return pressures, forces
+
+
+def wire_forces(case, frd):
+    """The film's load as ccx applied it in the last coupling iteration of a run (the loads file
+    holds that one; `frd` must be the same step): the axial force of the pressure on the wire's
+    deformed surface, pi p (r_b^2 - r_a^2) per S2 edge from corner a to corner b (exact for a
+    uniform pressure on a quadratic edge of revolution), the axial and radial sums of the
+    *CLOAD (the shear, whole ring), and the integral of the pressure over the moved faces."""
+    structure = pathlib.Path(case) / "structure"
+    pressures, forces = applied_loads(structure / "cocopp_loads.inp")
+    elements = deck_elements(structure / "wire.inp")
+    radius = {i: x + u for i, x, u in zip(frd.ids, frd.coordinates[:, 0], frd.values("DISP")[:, 0])}
+    reference = dict(zip(frd.ids, frd.coordinates))
+    u = dict(zip(frd.ids, frd.values("DISP")))
+    axial, total = 0.0, 0.0
+    for element, p in pressures.items():
+        a, b = elements[element][1], elements[element][2]  # edge S2: corners 2 and 3
+        axial += p * np.pi * (radius[b] ** 2 - radius[a] ** 2)
+        xa, xb = reference[a][:2] + u[a][:2], reference[b][:2] + u[b][:2]
+        total += p * np.pi * (xa[0] + xb[0]) * np.hypot(*(xb - xa))  # ring of the moved edge
+    return {"pressure_axial": axial, "shear_axial": forces[2], "shear_radial": forces[1],
+            "pressure_total": total}
