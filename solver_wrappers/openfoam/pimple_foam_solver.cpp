@@ -320,6 +320,7 @@ void PimpleFoamSolver::solve_pimple() {
   while (pimple.loop()) {
     if (pimple.firstIter() || move_mesh_outer_correctors_) {
       mesh.controlledUpdate();  // solves the motion with the interface displacement
+      check_cells_not_inverted();
       if (mesh.changing()) {
         MRF.update();
         if (correct_phi_) {
@@ -344,6 +345,29 @@ void PimpleFoamSolver::solve_pimple() {
     }
   }
   (void)runTime;  // used by some of the included files only
+}
+
+void PimpleFoamSolver::check_cells_not_inverted() const {
+  // A boundary that moves across the cell layers next to it (a die closing onto the wire
+  // faster than the film can carry) turns cells inside out: their volume is zero or negative.
+  // The flow would then be solved on it and fail later, or worse, not at all.
+  const scalarField& volumes = mesh_->V();
+  label inverted = 0, worst = -1;
+  forAll(volumes, cell) {
+    if (volumes[cell] > 0) continue;
+    ++inverted;
+    if (worst < 0 || volumes[cell] < volumes[worst]) worst = cell;
+  }
+  if (returnReduce(inverted, sumOp<label>()) == 0) return;
+  const vector centre = worst >= 0 ? mesh_->C()[worst] : vector::zero;
+  FatalErrorInFunction << "the mesh motion of coupling iteration " << iteration_ << " at time "
+                       << run_time_->timeName() << " turned " << inverted
+                       << " cell(s) inside out (the worst, cell " << worst << " at " << centre
+                       << ", has volume " << (worst >= 0 ? volumes[worst] : 0.0)
+                       << "): a boundary moved across the cells next to it. What to change: a "
+                          "wall that closes more slowly (a smaller prescribed motion per time "
+                          "step), a smaller time step, or more room between the walls"
+                       << exit(FatalError);
 }
 
 std::vector<double> PimpleFoamSolver::loads() const {

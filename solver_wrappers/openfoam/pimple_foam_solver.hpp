@@ -63,6 +63,8 @@ class PimpleFoamSolver : public sdk::Solver {
   void set_interface_displacement(const std::vector<double>& input);
   /// One PIMPLE time step without advancing time: the body of pimpleFoam's time loop.
   void solve_pimple();
+  /// Stops with a message if the mesh motion left a cell with no or negative volume.
+  void check_cells_not_inverted() const;
   std::vector<double> loads() const;
   sdk::InterfaceDescription interface_description() const;
   std::size_t input_size() const;
