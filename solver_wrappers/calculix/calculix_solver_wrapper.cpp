@@ -338,7 +338,8 @@ void CalculixSolverWrapper::run_ccx() {
     case Status::kNotConverged:
       fail(fmt::format(
           "solver '{}': ccx did not converge at {} ({}: the increment size fell below the "
-          "minimum); what to change: a smaller time step (settings.delta_t), a smaller minimum "
+          "minimum or it was cut back too often); what to change: a smaller time step "
+          "(settings.delta_t), a smaller minimum "
           "increment on the deck's *STATIC or *DYNAMIC line, or loads the structure can carry "
           "(a coupled load far beyond its limit load diverges); deck {}, last lines of {}:\n{}",
           name_, position(), result.exit_description, deck, log_file_.string(), result.details));

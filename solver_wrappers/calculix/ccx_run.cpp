@@ -94,7 +94,10 @@ CcxRunResult run_ccx(const CcxRunOptions& options) {
   }
   if (result.exit_code == 0) return result;
   const std::string log = read_text(options.log_file);
-  if (log.find("increment size smaller than minimum") != std::string::npos) {
+  // ccx gives up an increment in two ways: the increment fell below the minimum, or it was
+  // cut back more often than its controls allow.
+  if (log.find("increment size smaller than minimum") != std::string::npos ||
+      log.find("too many cutbacks") != std::string::npos) {
     result.status = CcxRunResult::Status::kNotConverged;
     result.details = read_last_lines(options.log_file, kLogTailLines);
     return result;

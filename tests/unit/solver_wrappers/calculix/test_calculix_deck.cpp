@@ -300,6 +300,21 @@ TEST_F(CalculixWithoutCcx, CrashIsReportedWithSignalAndPosition) {
   EXPECT_CONTAINS(message, "reading the deck");
 }
 
+// ccx gives up an increment either below the minimum size or after too many cutbacks: both
+// are non-convergence (with what to change), not a deck error.
+TEST_F(CalculixWithoutCcx, TooManyCutbacksIsNonConvergence) {
+  test_.create(cylinder_.deck(),
+               fake_ccx("echo ' too slow convergence; the increment size is decreased'\n"
+                        "echo ' *ERROR: too many cutbacks'\nexit 201"));
+  test_.wrapper().initialize();
+  test_.wrapper().initialize_step(3, 3.0);
+  const std::string message = testing::error_message<SolverError>([&] { test_.solve(1e6); });
+  EXPECT_CONTAINS(message, "ccx did not converge at time step 3, coupling iteration 1");
+  EXPECT_CONTAINS(message, "cut back too often");
+  EXPECT_CONTAINS(message, "what to change");
+  EXPECT_EQ(message.find("rejected the input deck"), std::string::npos) << message;
+}
+
 TEST_F(CalculixWithoutCcx, HangIsStoppedAfterTheTimeout) {
   test_.create(cylinder_.deck(), fake_ccx("exec sleep 30") + "timeout: 0.3\n");
   test_.wrapper().initialize();
