@@ -75,8 +75,10 @@ def run_checks(case, p, refine, step=None):
     # the film's wall points, which only approximates the wire's wavy surface under the die).
     film_axial = forces["shear_axial"] + forces["pressure_axial"]
     results["force_balance_error_film"] = (pull - (wire["back_force"] - film_axial)) / pull
-    if results["step"] == results["steps"]:
-        # The loads ccx applied in the last coupling iteration, on the wire's moved surface.
+    summary = json.loads((case / "results" / "case.summary.json").read_text())
+    if results["step"] == results["steps"] and summary.get("status") in ("completed", "stalled"):
+        # The loads ccx applied in the last coupling iteration, on the wire's moved surface
+        # (after a run that stopped, the loads file is of the step that failed).
         applied = wire_forces(case, frd)
         results.update({f"wire_{k}": v for k, v in applied.items()})
         wire_axial = applied["shear_axial"] + applied["pressure_axial"]

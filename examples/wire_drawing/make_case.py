@@ -334,6 +334,9 @@ solver_wrappers:
     output_mapper:                # wire surface nodes (r, axis) -> film wall points (wedge)
       type: linear
       components: [x, y]          # only the radial displacement moves the film: it slides
+      directions: [x, z]          # across the wedge and along the axis, not radially: the film's
+                                  # points lag the wire's radius by an iteration, and a 3D search
+                                  # then picks skewed triangles (a jagged wall, 10x rougher)
       transformers:
         - {{type: axisymmetric_2d_to_3d, direction_axial: y, direction_radial: x, angle: {p['mesh']['wedge_degrees']:.17g}}}
         - {{type: permutation, permutation: [2, 0, 1]}}   # (r, axis, third) -> film (third, r, axis)
