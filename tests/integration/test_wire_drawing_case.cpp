@@ -1,5 +1,5 @@
 // The wire drawing case (examples/wire_drawing) coupled end to end, coarse and short: the film
-// (3 x 50 cells) and the wire (4 x 153 CAX8R) through the sliding interface for 12 time steps,
+// (3 x 50 cells) and the wire (4 x 153 CAX8R) through the sliding interface for 16 time steps,
 // the die held for 2 and then closing at the paper's rate, so that the wire starts to yield
 // under the die. Checks that the run completes with the paper's coupling (IQN-ILS, 0.01 um) in a
 // few iterations per step; that the film is where Wilson and Walowit's inlet estimate puts it;
@@ -20,8 +20,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Bands from the runs of this test (docs/wire-drawing.md, "Tests").
-constexpr double kAverageIterationsAtMost = 8.0, kIterationsAtMost = 12.0;
+// Bands around this test's run (measured: 5.69 on average, at most 9; docs/wire-drawing.md).
+constexpr double kAverageIterationsAtMost = 7.0, kIterationsAtMost = 12.0;
 
 TEST(WireDrawingCase, CoarseShortRunCouplesFilmAndWire) {
   testing::TemporaryDirectory directory;
@@ -30,19 +30,19 @@ TEST(WireDrawingCase, CoarseShortRunCouplesFilmAndWire) {
       "--set mesh.wire_radial_elements=4 --set mesh.wire_axial_elements=153"
       " --set mesh.film_axial_cells=50 --set mesh.film_radial_cells=3"
       " --set time.held_steps=2");
-  testing::edit(directory / "case.yaml", "number_of_timesteps: 80", "number_of_timesteps: 12");
+  testing::edit(directory / "case.yaml", "number_of_timesteps: 80", "number_of_timesteps: 16");
   const testing::CommandResult run =
       testing::run_cocopp("run -q " + (directory / "case.yaml").string());
   ASSERT_EQ(run.exit_code, 0) << run.output;
 
   const ResultsReader results(directory / "results/case.h5");
   EXPECT_EQ(results.status(), "completed");
-  ASSERT_EQ(results.steps().size(), 12u);
+  ASSERT_EQ(results.steps().size(), 16u);
   const auto iterations = results.dataset("steps/iterations").values;
   double total = 0.0, most = 0.0;
   for (double n : iterations) total += n, most = std::max(most, n);
-  std::printf("iterations per step: %.2f on average, at most %.0f\n", total / 12, most);
-  EXPECT_LE(total / 12, kAverageIterationsAtMost);
+  std::printf("iterations per step: %.2f on average, at most %.0f\n", total / 16, most);
+  EXPECT_LE(total / 16, kAverageIterationsAtMost);
   EXPECT_LE(most, kIterationsAtMost);
 
   // The expert's checks (examples/wire_drawing/checks.py) at the last step.
@@ -56,13 +56,14 @@ TEST(WireDrawingCase, CoarseShortRunCouplesFilmAndWire) {
   EXPECT_GT(number("film_thickness_at_cone_end"), 0.7 * number("wilson_walowit_h0"));
   EXPECT_LT(number("film_thickness_at_cone_end"), 1.6 * number("wilson_walowit_h0"));
   // The drawing force (ccx's reaction at the exit end) against the back force and the film's
-  // loads as ccx applied them (the issue asks for 1 %; measured 7e-5).
+  // loads, as ccx applied them (measured 7e-5) and integrated on the film (2.3e-3).
   EXPECT_LT(std::abs(number("force_balance_error")), 1e-3);
+  EXPECT_LT(std::abs(number("force_balance_error_film")), 1e-2);
   // The film's load reaching the wire: the overlap mapping keeps pressure x length along the
-  // axis (to 3e-7 here); over the rings, a wire face 3 film faces long carries one pressure at
-  // its own radius (measured: shear 8e-5, pressure 1.1e-3).
-  EXPECT_LT(std::abs(number("transfer_error_shear")), 1e-3);
-  EXPECT_LT(std::abs(number("transfer_error_pressure")), 3e-3);
+  // axis; over the rings, a wire face 3 film faces long carries one pressure at its own radius,
+  // and the shear acts on the faces as the last step left them (measured 3e-4 and 6e-4).
+  EXPECT_LT(std::abs(number("transfer_error_shear")), 2e-3);
+  EXPECT_LT(std::abs(number("transfer_error_pressure")), 2e-3);
   // The wire has yielded under the die, and its stresses stay on the yield surface.
   EXPECT_GT(number("max_plastic_strain_surface"), 1e-4);
   EXPECT_LT(number("max_equivalent_over_yield"), 1.0 + 1e-3);
