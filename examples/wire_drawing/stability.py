@@ -21,7 +21,7 @@ def main():
         per_step = s.get("iterations_per_step", [])
         iterations = (f"{sum(per_step) / len(per_step):.2f} ({max(per_step)})" if per_step else "-")
         message = (s.get("message") or "").splitlines()
-        rows.append(f"| {name} | {s.get('status', '?')} | {s.get('last_step', 0)} / "
+        rows.append(f"| {name} | {s.get('status', '?')} | {s.get('last_step') or 0} / "
                     f"{s.get('number_of_timesteps', '?')} | {iterations} | "
                     f"{s.get('wall_time', 0):.0f} s | {message[0] if message else ''} |")
     table = "\n".join(rows)
