@@ -70,7 +70,7 @@ def main():
                       title="equivalent and yield stress at the wire's surface (nodal)")
         stress_ax.legend(fontsize=8)
 
-        force_steps = sorted(s for s in frds if s in set(int(v) for v in steps))
+        force_steps = sorted(set(frds) & {int(v) for v in steps})
         forces = [exit_force(Frd(frds[s], {"FORC"}), p["wire"]) for s in force_steps]
         force_ax.plot(force_steps, forces, "o-", ms=3, label="drawing force (exit end)")
         force_ax.axhline(p["wire"]["back_force"], color="k", ls=":", label="back force")

@@ -49,9 +49,6 @@ class Frd:
         self.coordinates = np.array([nodes[i] for i in self.ids])
         self._blocks = blocks
 
-    def has(self, name):
-        return name in self._blocks
-
     def values(self, name):
         if name not in self._blocks:
             raise KeyError(f"{self.path}: no {name} block (request it in *NODE FILE or *EL FILE)")
@@ -238,14 +235,11 @@ def wire_forces(case, frd):
     structure = pathlib.Path(case) / "structure"
     pressures, forces = applied_loads(structure / "cocopp_loads.inp")
     elements = deck_elements(structure / "wire.inp")
-    radius = {i: x + u for i, x, u in zip(frd.ids, frd.coordinates[:, 0], frd.values("DISP")[:, 0])}
-    reference = dict(zip(frd.ids, frd.coordinates))
-    u = dict(zip(frd.ids, frd.values("DISP")))
+    moved = dict(zip(frd.ids, frd.coordinates[:, :2] + frd.values("DISP")[:, :2]))  # (r, z)
     axial, total = 0.0, 0.0
     for element, p in pressures.items():
-        a, b = elements[element][1], elements[element][2]  # edge S2: corners 2 and 3
-        axial += p * np.pi * (radius[b] ** 2 - radius[a] ** 2)
-        xa, xb = reference[a][:2] + u[a][:2], reference[b][:2] + u[b][:2]
-        total += p * np.pi * (xa[0] + xb[0]) * np.hypot(*(xb - xa))  # ring of the moved edge
+        a, b = moved[elements[element][1]], moved[elements[element][2]]  # edge S2: corners 2, 3
+        axial += p * np.pi * (b[0] ** 2 - a[0] ** 2)
+        total += p * np.pi * (a[0] + b[0]) * np.hypot(*(b - a))  # ring of the moved edge
     return {"pressure_axial": axial, "shear_axial": forces[2], "shear_radial": forces[1],
             "pressure_total": total}

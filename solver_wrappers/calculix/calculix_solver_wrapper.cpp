@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -162,7 +161,6 @@ void CalculixSolverWrapper::read_deck() {
           deck_->step().front().where, deck_->step_time_period(), run_.delta_t));
     check_dynamic_elements();
     loads_ = std::make_unique<calculix::InterfaceLoads>(*deck_, deck_->surface(surface_name_));
-    large_deformation_ = step_is_nlgeom(*deck_);
     if (loads_->faces().empty())
       throw calculix::DeckError("surface " + surface_name_ + " has no faces");
     interface_nodes_ = deck_->node_set(node_set_name_);
@@ -366,7 +364,7 @@ void CalculixSolverWrapper::finalize_step() {
   if (iteration_ == 0)
     fail(fmt::format("solver '{}': time step {} is committed without a coupling iteration", name_,
                      step_));
-  if (large_deformation_) move_faces_to_converged_state();
+  if (deck_->nonlinear_geometry()) move_faces_to_converged_state();
   // The last iteration is the converged one: its end state is the next step's start.
   if (state_reset_ == StateReset::kReplay) {
     const std::string loads = fmt::format("cocopp_loads_step{:05d}.inp", step_);
@@ -381,13 +379,6 @@ void CalculixSolverWrapper::finalize_step() {
                      restart.string(), step_));
   std::filesystem::rename(restart, file(kConvergedRestart));
   has_converged_restart_ = true;
-}
-
-bool CalculixSolverWrapper::step_is_nlgeom(const calculix::InputDeck& deck) {
-  std::string step_line = deck.step().front().text;
-  std::transform(step_line.begin(), step_line.end(), step_line.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
-  return step_line.find("NLGEOM") != std::string::npos;
 }
 
 // ccx applies a pressure on the deformed faces in an NLGEOM step; the traction's nodal forces

@@ -80,7 +80,6 @@ class CalculixSolverWrapper : public SolverWrapper {
   void write_step(std::ofstream& out, const std::string& loads_file, bool print) const;
   void write_loads(const Interface& input) const;
   void run_ccx();
-  static bool step_is_nlgeom(const calculix::InputDeck& deck);
   void move_faces_to_converged_state();
   [[noreturn]] void fail(const std::string& message) const;
   std::string position() const;
@@ -109,7 +108,6 @@ class CalculixSolverWrapper : public SolverWrapper {
   std::vector<std::int64_t> interface_nodes_;
   std::filesystem::path ccx_path_;
   StateReset state_reset_ = StateReset::kRestart;
-  bool large_deformation_ = false;  ///< an NLGEOM step: tractions act on the moved faces
 
   // While running.
   int step_ = 0;

@@ -204,6 +204,7 @@ void InputDeck::interpret(const std::vector<Card>& cards) {
                         ": a second *STEP: give one step; the wrapper repeats it for every "
                         "coupling time step, with the loads of each coupling iteration");
       part = Part::kStep;
+      nonlinear_geometry_ = card.has("NLGEOM");
     }
     if (part == Part::kModel) keywords_.insert(card.keyword);
     auto& target = part == Part::kModel ? model_definition_ : step_;

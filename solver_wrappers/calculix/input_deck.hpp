@@ -72,6 +72,8 @@ class InputDeck {
   /// The step's procedure, e.g. "STATIC" or "DYNAMIC", and its time period (0 if not given).
   const std::string& procedure() const { return procedure_; }
   double step_time_period() const { return step_time_period_; }
+  /// Whether the *STEP card has NLGEOM: ccx applies pressures on the deformed faces.
+  bool nonlinear_geometry() const { return nonlinear_geometry_; }
   /// Whether the model definition has a card with this keyword (upper case, e.g. "PLASTIC").
   bool has_keyword(const std::string& keyword) const { return keywords_.count(keyword) != 0; }
 
@@ -98,6 +100,7 @@ class InputDeck {
   std::set<std::string> keywords_;  ///< of the model definition
   std::string procedure_;
   double step_time_period_ = 0.0;
+  bool nonlinear_geometry_ = false;
   std::string file_;
 };
 

@@ -53,15 +53,19 @@ class Fluid : public SolverWrapper {
 
 /// The wire: 41 points on z in [-0.5, 0.5] moving by `translation` (default kStepTranslation)
 /// per step; it records the pressure it receives and reports its axial displacement and a
-/// radial displacement of 0.001 per step.
+/// radial displacement of 0.001 per step. With `faces: true` it takes the pressure on its 40
+/// face centres and gives the displacement at its 41 nodes: two model parts, as a structure
+/// solver presents them.
 class TranslatingWire : public SolverWrapper {
  public:
   TranslatingWire(const Settings& settings, const RunSettings&)
       : name_(settings.get<std::string>("name", "wire")),
         translation_(settings.get<double>("translation", kStepTranslation)) {
-    auto part = line("wire", 41, -0.5, 0.5);
-    input_ = Interface({{part, {"pressure"}}});
-    output_ = Interface({{part, {"displacement"}}});
+    auto nodes = line("wire", 41, -0.5, 0.5);
+    auto faces =
+        settings.get<bool>("faces", false) ? line("faces", 40, -0.5 + 0.0125, 0.5 - 0.0125) : nodes;
+    input_ = Interface({{faces, {"pressure"}}});
+    output_ = Interface({{nodes, {"displacement"}}});
     last = this;
   }
   const std::string& name() const override { return name_; }
@@ -70,7 +74,7 @@ class TranslatingWire : public SolverWrapper {
   const Interface& output_interface() const override { return output_; }
   void initialize_step(int step, double) override { step_ = step; }
   const Interface& solve(const Interface& input) override {
-    received = input.values("wire", "pressure");
+    received = input.values(input.parts()[0].model_part->name, "pressure");
     auto displacement = output_.values("wire", "displacement");
     displacement.col(1).setConstant(0.001 * step_);
     displacement.col(2).setConstant(translation_ * step_);
@@ -92,126 +96,18 @@ class TranslatingWire : public SolverWrapper {
 
 COCOPP_REGISTER(SolverWrapperRegistry, "test_translating_wire", TranslatingWire)
 
-TEST(MappedWrapper, SlidingWireGetsTheFluidPressureWhereItOverlaps) {
-  const Settings settings = Settings::load_string(R"(type: mapped
-solver_wrapper: {type: test_translating_wire}
-input_mapper: {type: linear, directions: [z], max_distance: 0.01, unmatched: zero}
-output_mapper: {type: nearest, directions: [z], components: [y]}
-coordinates: current
-rebuild: time_step
-)",
-                                                  "case.yaml");
-  // The fluid slips along the wire: only the radial (y) displacement reaches it, so its points
-  // stay where they are while the wire's current positions move.
-  auto mapped = SolverWrapperRegistry::instance().create(settings, RunSettings{});
-  settings.check_unused_keys();
-  Fluid fluid;
-  mapped->initialize();
-  mapped->adopt_interfaces(fluid.output_interface(), fluid.input_interface());
-  const TranslatingWire& wire = *TranslatingWire::last;
-  const Eigen::VectorXd z0 = wire.input_interface().parts()[0].model_part->coordinates.col(2);
-
-  int inside_total = 0, outside_total = 0;
-  for (int step = 1; step <= 30; ++step) {
-    mapped->initialize_step(step, step);  // rebuilt on the positions of the previous step
-    mapped->solve(fluid.output_interface());
-    const double shift = kStepTranslation * (step - 1);
-    for (Eigen::Index i = 0; i < z0.size(); ++i) {
-      const double z = z0(i) + shift;
-      const bool inside = z >= -1e-12 && z <= 1.0 + 1e-12;  // the ends belong to the fluid
-      // Linear interpolation of z^2 on a 0.005 grid: error at most h^2/8 ~ 3e-6.
-      const double expected = inside ? fluid_pressure(z) : 0.0;
-      EXPECT_NEAR(wire.received(i, 0), expected, 4e-6) << "step " << step << ", z " << z;
-      (inside ? inside_total : outside_total) += 1;
-    }
-  }
-  // The wire went from half outside on one end to half outside on the other.
-  EXPECT_GT(inside_total, 0);
-  EXPECT_GT(outside_total, 0);
-}
-
-/// A wire like test_translating_wire, but as a structure solver presents it: loads on its faces
-/// (40 face centres), displacement at its nodes (41 points), two model parts.
-class FacesAndNodesWire : public SolverWrapper {
- public:
-  FacesAndNodesWire(const Settings& settings, const RunSettings&)
-      : name_(settings.get<std::string>("name", "wire")) {
-    auto faces = line("faces", 40, -0.5 + 0.0125, 0.5 - 0.0125);
-    auto nodes = line("nodes", 41, -0.5, 0.5);
-    input_ = Interface({{faces, {"pressure"}}});
-    output_ = Interface({{nodes, {"displacement"}}});
-    last = this;
-  }
-  const std::string& name() const override { return name_; }
-  void initialize() override {}
-  const Interface& input_interface() const override { return input_; }
-  const Interface& output_interface() const override { return output_; }
-  void initialize_step(int step, double) override { step_ = step; }
-  const Interface& solve(const Interface& input) override {
-    received = input.values("faces", "pressure");
-    output_.values("nodes", "displacement").col(2).setConstant(kStepTranslation * step_);
-    return output_;
-  }
-  void finalize_step() override {}
-  void output_step() override {}
-  void finalize() override {}
-
-  static inline FacesAndNodesWire* last = nullptr;
-  RowMatrix received;
-
- private:
-  std::string name_;
-  Interface input_, output_;
-  int step_ = 0;
-};
-
-COCOPP_REGISTER(SolverWrapperRegistry, "test_faces_and_nodes_wire", FacesAndNodesWire)
-
-TEST(MappedWrapper, FacesWithoutDisplacementMoveWithTheNodes) {
-  // The faces have no displacement of their own: with `coordinates: current` they take their
-  // nearest node's, so the loads follow the body, as for a CalculiX surface and node set.
-  const Settings settings = Settings::load_string(R"(type: mapped
-solver_wrapper: {type: test_faces_and_nodes_wire}
-input_mapper: {type: linear, directions: [z], max_distance: 0.01, unmatched: zero}
-output_mapper: {type: nearest, directions: [z], components: [y]}
-coordinates: current
-rebuild: time_step
-)",
-                                                  "case.yaml");
-  auto mapped = SolverWrapperRegistry::instance().create(settings, RunSettings{});
-  settings.check_unused_keys();
-  Fluid fluid;
-  mapped->initialize();
-  mapped->adopt_interfaces(fluid.output_interface(), fluid.input_interface());
-  const FacesAndNodesWire& wire = *FacesAndNodesWire::last;
-  const Eigen::VectorXd z0 = wire.input_interface().parts()[0].model_part->coordinates.col(2);
-  for (int step = 1; step <= 10; ++step) {
-    mapped->initialize_step(step, step);
-    mapped->solve(fluid.output_interface());
-    const double shift = kStepTranslation * (step - 1);  // the nodes' displacement so far
-    for (Eigen::Index i = 0; i < z0.size(); ++i) {
-      const double z = z0(i) + shift;
-      const bool inside = z >= -1e-12 && z <= 1.0 + 1e-12;
-      // Linear interpolation of z^2 midway between points 0.005 apart: h^2/4 = 6.25e-6.
-      EXPECT_NEAR(wire.received(i, 0), inside ? fluid_pressure(z) : 0.0, 6.3e-6)
-          << "step " << step << ", z " << z;
-    }
-  }
-}
-
-/// A mapped test_translating_wire held in its own frame, which moves at 0.05 per unit time
-/// along z, adopted by `fluid`; `components` masks the output mapper.
-std::unique_ptr<SolverWrapper> wire_in_moving_frame(Fluid& fluid, const std::string& components) {
-  const Settings settings = Settings::load_string(R"(type: mapped
-solver_wrapper: {type: test_translating_wire, translation: 0}
-input_mapper: {type: linear, directions: [z], max_distance: 0.01, unmatched: zero}
-output_mapper: {type: nearest, directions: [z], components: )" +
-                                                      components + R"(}
-coordinates: current
-rebuild: time_step
-frame_velocity: [0, 0, 0.05]
-)",
-                                                  "case.yaml");
+/// A mapped test_translating_wire with `wire_keys` (e.g. ", faces: true") on a sliding
+/// interface (mapped along z, rebuilt every step on the current positions), adopted by
+/// `fluid`; `components` masks the output mapper, `more` adds keys of the mapped wrapper.
+std::unique_ptr<SolverWrapper> mapped_wire(Fluid& fluid, const std::string& wire_keys,
+                                           const std::string& components,
+                                           const std::string& more = "") {
+  const Settings settings = Settings::load_string(
+      "type: mapped\nsolver_wrapper: {type: test_translating_wire" + wire_keys +
+          "}\ninput_mapper: {type: linear, directions: [z], max_distance: 0.01, unmatched: "
+          "zero}\noutput_mapper: {type: nearest, directions: [z], components: " +
+          components + "}\ncoordinates: current\nrebuild: time_step\n" + more,
+      "case.yaml");
   auto mapped = SolverWrapperRegistry::instance().create(settings, RunSettings{});
   settings.check_unused_keys();
   mapped->initialize();
@@ -219,23 +115,72 @@ frame_velocity: [0, 0, 0.05]
   return mapped;
 }
 
+/// The wire's load points, at z0 + shift, received the fluid's pressure where they overlap it
+/// and zero outside, within `tolerance`; counts the points inside and outside.
+void expect_fluid_pressure(const TranslatingWire& wire, double shift, double tolerance, int step,
+                           int& inside_total, int& outside_total) {
+  const Eigen::VectorXd z0 = wire.input_interface().parts()[0].model_part->coordinates.col(2);
+  for (Eigen::Index i = 0; i < z0.size(); ++i) {
+    const double z = z0(i) + shift;
+    const bool inside = z >= -1e-12 && z <= 1.0 + 1e-12;  // the ends belong to the fluid
+    EXPECT_NEAR(wire.received(i, 0), inside ? fluid_pressure(z) : 0.0, tolerance)
+        << "step " << step << ", z " << z;
+    (inside ? inside_total : outside_total) += 1;
+  }
+}
+
+TEST(MappedWrapper, SlidingWireGetsTheFluidPressureWhereItOverlaps) {
+  // The fluid slips along the wire: only the radial (y) displacement reaches it, so its points
+  // stay where they are while the wire's current positions move.
+  Fluid fluid;
+  auto mapped = mapped_wire(fluid, "", "[y]");
+  int inside_total = 0, outside_total = 0;
+  for (int step = 1; step <= 30; ++step) {
+    mapped->initialize_step(step, step);  // rebuilt on the positions of the previous step
+    mapped->solve(fluid.output_interface());
+    // Linear interpolation of z^2 on a 0.005 grid: error at most h^2/8 ~ 3e-6.
+    expect_fluid_pressure(*TranslatingWire::last, kStepTranslation * (step - 1), 4e-6, step,
+                          inside_total, outside_total);
+  }
+  // The wire went from half outside on one end to half outside on the other.
+  EXPECT_GT(inside_total, 0);
+  EXPECT_GT(outside_total, 0);
+}
+
+TEST(MappedWrapper, FacesWithoutDisplacementMoveWithTheNodes) {
+  // The faces have no displacement of their own: with `coordinates: current` they take their
+  // nearest node's, so the loads follow the body, as for a CalculiX surface and node set.
+  Fluid fluid;
+  auto mapped = mapped_wire(fluid, ", faces: true", "[y]");
+  int inside_total = 0, outside_total = 0;
+  for (int step = 1; step <= 10; ++step) {
+    mapped->initialize_step(step, step);
+    mapped->solve(fluid.output_interface());
+    // The nodes' displacement so far; linear interpolation of z^2 midway between points
+    // 0.005 apart: h^2/4 = 6.25e-6.
+    expect_fluid_pressure(*TranslatingWire::last, kStepTranslation * (step - 1), 6.3e-6, step,
+                          inside_total, outside_total);
+  }
+}
+
+/// A mapped test_translating_wire held in its own frame, which moves at 0.05 per unit time
+/// along z, adopted by `fluid`; `components` masks the output mapper.
+std::unique_ptr<SolverWrapper> wire_in_moving_frame(Fluid& fluid, const std::string& components) {
+  return mapped_wire(fluid, ", translation: 0", components, "frame_velocity: [0, 0, 0.05]\n");
+}
+
 TEST(MappedWrapper, MovingFrameShiftsTheMapping) {
   // At time t the wire's points are at z0 + 0.05 t (exactly: the frame's motion is known, not
   // lagged by a step as a displacement is), and the fluid takes only the radial displacement.
   Fluid fluid;
   auto mapped = wire_in_moving_frame(fluid, "[x, y]");
-  const TranslatingWire& wire = *TranslatingWire::last;
-  const Eigen::VectorXd z0 = wire.input_interface().parts()[0].model_part->coordinates.col(2);
+  int inside_total = 0, outside_total = 0;
   for (int step = 1; step <= 12; ++step) {
     const double time = 0.5 * step;
     mapped->initialize_step(step, time);
     const Interface& output = mapped->solve(fluid.output_interface());
-    for (Eigen::Index i = 0; i < z0.size(); ++i) {
-      const double z = z0(i) + 0.05 * time;
-      const bool inside = z >= -1e-12 && z <= 1.0 + 1e-12;
-      EXPECT_NEAR(wire.received(i, 0), inside ? fluid_pressure(z) : 0.0, 4e-6)
-          << "step " << step << ", z " << z;
-    }
+    expect_fluid_pressure(*TranslatingWire::last, 0.05 * time, 4e-6, step, inside_total,
+                          outside_total);
     const RowMatrix displacement = output.values("fluid", "displacement");
     EXPECT_DOUBLE_EQ(displacement.col(1).minCoeff(), 0.001 * step);
     EXPECT_DOUBLE_EQ(displacement.col(1).maxCoeff(), 0.001 * step);
