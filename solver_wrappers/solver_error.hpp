@@ -18,4 +18,12 @@ class SolverError : public std::runtime_error {
   std::string solver_name_;
 };
 
+/// The solver could not solve the time step for this input (a structure loaded beyond what it
+/// can carry, a mesh turned inside out) but kept the state the step started from, so it can
+/// solve the step again for another input: the coupled solver may step back and retry.
+class SolverRejectedInput : public SolverError {
+ public:
+  using SolverError::SolverError;
+};
+
 }  // namespace cocopp

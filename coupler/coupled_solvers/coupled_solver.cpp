@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "solver_wrappers/solver_error.hpp"
+
 namespace cocopp {
 
 namespace {
@@ -42,7 +44,11 @@ CoupledSolver::CoupledSolver(const Settings& settings)
       divergence_factor_(
           settings.child_or_empty("divergence").get_in_range("factor", 1e6, Range::at_least(1.0))),
       growth_iterations_(
-          settings.child_or_empty("divergence").get_int_in_range("growth_iterations", 10, 0)) {}
+          settings.child_or_empty("divergence").get_int_in_range("growth_iterations", 10, 0)),
+      backtracking_retries_(
+          settings.child_or_empty("backtracking").get_int_in_range("retries", 4, 0)),
+      backtracking_factor_(settings.child_or_empty("backtracking")
+                               .get_in_range("factor", 0.5, {0.0, 1.0, true, true})) {}
 
 void CoupledSolver::initialize(SolverWrapper& first, SolverWrapper& second) {
   solvers_ = {&first, &second};
@@ -112,12 +118,16 @@ StepRecord CoupledSolver::solve_step(int step, double time) {
   record.time = time;
   for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->initialize_step(step, time); });
 
+  // The previous step's converged input: what the solvers last accepted.
+  Eigen::VectorXd accepted = x_.data();
   Eigen::VectorXd x = predictor_->predict();
   criterion_->initialize_step();
   on_step_start();
   bool tolerance_met = false;
+  std::vector<std::string> notes;
   for (int iteration = 1;; ++iteration) {
-    const Eigen::VectorXd xt = evaluate(x, step, iteration);
+    const Eigen::VectorXd xt = evaluate_stepping_back(x, accepted, step, iteration, notes);
+    accepted = x;
     const Eigen::VectorXd r = xt - x;
     record.residual_norms.push_back(r.norm());
     record.iterations = iteration;
@@ -135,7 +145,8 @@ StepRecord CoupledSolver::solve_step(int step, double time) {
     }
     x = next_input(x, xt, r);
   }
-  record.warnings = count_repeats(take_notes());
+  for (auto& note : take_notes()) notes.push_back(std::move(note));
+  record.warnings = count_repeats(notes);
   x_.set_data(x);
   predictor_->update(x);
   on_step_end();
@@ -157,6 +168,32 @@ Eigen::VectorXd CoupledSolver::evaluate(const Eigen::VectorXd& x, int step, int 
   const Interface& xt = timed_solve(1, y_);
   check_finite(xt, *solvers_[1], step, iteration);
   return xt.data();
+}
+
+Eigen::VectorXd CoupledSolver::evaluate_stepping_back(Eigen::VectorXd& x,
+                                                      const Eigen::VectorXd& accepted, int step,
+                                                      int iteration,
+                                                      std::vector<std::string>& notes) {
+  for (int retry = 1;; ++retry) {
+    try {
+      return evaluate(x, step, iteration);
+    } catch (const SolverRejectedInput& e) {
+      if (retry > backtracking_retries_)
+        throw SolverError(
+            e.solver_name(),
+            fmt::format("{}\n(the coupled solver stepped back {} times towards the last input "
+                        "both solvers accepted, coupled_solver.backtracking.retries = {})",
+                        e.what(), backtracking_retries_, backtracking_retries_));
+      // The rejected input lies too far from one the solver can take: the step towards it
+      // from the last accepted input is too long, whatever made it (a quasi-Newton update
+      // from poor secant information, an extrapolating predictor).
+      x = accepted + backtracking_factor_ * (x - accepted);
+      notes.push_back(fmt::format(
+          "solver '{}' rejected the input of iteration {}: the step from the last accepted "
+          "input was shortened {} time(s) by {:g}",
+          e.solver_name(), iteration, retry, backtracking_factor_));
+    }
+  }
 }
 
 void CoupledSolver::check_finite(const Interface& data, const SolverWrapper& solver, int step,

@@ -87,6 +87,11 @@ class CoupledSolver {
  private:
   /// One coupling iteration: y = F(x), x~ = S(y). Returns x~.
   Eigen::VectorXd evaluate(const Eigen::VectorXd& x, int step, int iteration);
+  /// evaluate(), but when a solver rejects x (SolverRejectedInput) x steps back towards
+  /// `accepted`, the last input both solvers solved, by `backtracking.factor`, up to
+  /// `backtracking.retries` times; each step back is noted in `notes`.
+  Eigen::VectorXd evaluate_stepping_back(Eigen::VectorXd& x, const Eigen::VectorXd& accepted,
+                                         int step, int iteration, std::vector<std::string>& notes);
   const Interface& timed_solve(int index, const Interface& input);
   template <class Call>
   void timed(int index, Call call);
@@ -100,7 +105,9 @@ class CoupledSolver {
   std::unique_ptr<Predictor> predictor_;
   std::unique_ptr<ConvergenceCriterion> criterion_;
   double divergence_factor_;
-  int growth_iterations_;  ///< 0: off
+  int growth_iterations_;     ///< 0: off
+  int backtracking_retries_;  ///< 0: a rejected input stops the run
+  double backtracking_factor_;
   std::array<SolverWrapper*, 2> solvers_{};
   Interface x_, y_;  ///< layouts of the first solver's input and output
   std::array<double, 2> solver_time_step_{};

@@ -334,13 +334,18 @@ void CalculixSolverWrapper::run_ccx() {
     case Status::kSuccess:
       return;
     case Status::kNotConverged:
-      fail(fmt::format(
-          "solver '{}': ccx did not converge at {} ({}: the increment size fell below the "
-          "minimum or it was cut back too often); what to change: a smaller time step "
-          "(settings.delta_t), a smaller minimum "
-          "increment on the deck's *STATIC or *DYNAMIC line, or loads the structure can carry "
-          "(a coupled load far beyond its limit load diverges); deck {}, last lines of {}:\n{}",
-          name_, position(), result.exit_description, deck, log_file_.string(), result.details));
+      // The step starts from the converged restart (or the replayed steps) again at the next
+      // solve, so the coupled solver may retry with other loads.
+      throw SolverRejectedInput(
+          name_,
+          fmt::format(
+              "solver '{}': ccx did not converge at {} ({}: the increment size fell below the "
+              "minimum or it was cut back too often); what to change: a smaller time step "
+              "(settings.delta_t), a smaller minimum "
+              "increment on the deck's *STATIC or *DYNAMIC line, or loads the structure can carry "
+              "(a coupled load far beyond its limit load diverges); deck {}, last lines of {}:\n{}",
+              name_, position(), result.exit_description, deck, log_file_.string(),
+              result.details));
     case Status::kDeckError:
       fail(fmt::format(
           "solver '{}': ccx rejected the input deck at {} ({}); deck {} (built from {}), "

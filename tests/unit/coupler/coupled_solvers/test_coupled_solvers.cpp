@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include "coupler/coupled_solvers/coupled_solver.hpp"
+#include "solver_wrappers/solver_error.hpp"
+#include "tests/support/error_message.hpp"
 #include "tests/support/linear_solvers.hpp"
 
 using namespace cocopp;
@@ -165,4 +167,86 @@ TEST(CoupledSolvers, SteadyResidualGrowthIsDetected) {
         << message;
     EXPECT_NE(message.find("in iteration 11"), std::string::npos) << message;
   }
+}
+
+namespace {
+
+/// A flow that rejects displacements longer than `limit` (as a mesh that would turn inside
+/// out), keeping the inputs it was given.
+class RejectingFlow : public AffineSolver {
+ public:
+  using AffineSolver::AffineSolver;
+  const Interface& solve(const Interface& input) override {
+    const Eigen::VectorXd x = input.values("wall", "displacement").col(1);
+    inputs.push_back(x);
+    if (x.norm() > limit) throw SolverRejectedInput(name(), "the displacement is too large");
+    return AffineSolver::solve(input);
+  }
+  double limit = 0.0;
+  std::vector<Eigen::VectorXd> inputs;
+};
+
+/// Relaxation with omega 1.3 on B A with eigenvalues in [-0.3, 0.1]: the first relaxed step
+/// x1 = 1.3 B b is longer than the solution x* = (I - B A)^-1 B b (1.3 > 1 / (1 - lambda)), so
+/// a flow that rejects displacements longer than (|x*| + |x1|) / 2 rejects it.
+struct RejectingProblem : Problem {
+  RejectingProblem() : Problem(6, -0.3, 0.1) {
+    const Eigen::VectorXd offset = Eigen::VectorXd::LinSpaced(6, 1.0, 2.0);
+    flow = std::make_unique<RejectingFlow>("flow", part, "displacement", "pressure",
+                                           2.0 * Eigen::MatrixXd::Identity(6, 6), offset);
+    first_step = 1.3 * structure_matrix() * offset;
+  }
+  Eigen::MatrixXd structure_matrix() const {
+    Eigen::MatrixXd b(6, 6);
+    for (int j = 0; j < 6; ++j) {
+      Interface in({{part, {"pressure"}}});
+      in.values("wall", "pressure").setZero();
+      in.values("wall", "pressure")(j, 0) = 1.0;
+      b.col(j) = structure->solve(in).values("wall", "displacement").col(1);
+      in.values("wall", "pressure").setZero();
+      structure->solve(in);  // the initial state again: x = 0
+    }
+    structure->calls = 0;
+    return b;
+  }
+  RejectingFlow& rejecting() { return static_cast<RejectingFlow&>(*flow); }
+  Eigen::VectorXd first_step;
+};
+
+}  // namespace
+
+TEST(CoupledSolvers, RejectedInputIsRetriedHalfwayFromTheLastAcceptedOne) {
+  RejectingProblem problem;
+  ASSERT_GT(problem.first_step.norm(), problem.solution.norm());
+  problem.rejecting().limit = 0.5 * (problem.first_step.norm() + problem.solution.norm());
+  auto coupled = make("type: relaxation\nomega: 1.3", 200);
+  const StepRecord record = solve_one_step(*coupled, problem);
+  const auto& inputs = problem.rejecting().inputs;
+  ASSERT_GE(inputs.size(), 3u);
+  EXPECT_EQ(inputs[0].norm(), 0.0);  // the initial state, accepted
+  EXPECT_LT((inputs[1] - problem.first_step).norm(), 1e-14);
+  EXPECT_LT((inputs[2] - 0.5 * problem.first_step).norm(), 1e-14);
+  ASSERT_FALSE(record.warnings.empty());
+  EXPECT_EQ(record.warnings.front().rfind("solver 'flow' rejected the input of iteration 2: the "
+                                          "step from the last accepted input was shortened 1 "
+                                          "time(s) by 0.5",
+                                          0),
+            0u)
+      << record.warnings.front();
+  // A rejected input is no iteration: one residual per accepted input.
+  EXPECT_EQ(record.residual_norms.size(), std::size_t(record.iterations));
+  EXPECT_GT(int(inputs.size()), record.iterations);
+}
+
+TEST(CoupledSolvers, RejectionsBeyondTheRetriesStopTheRunNamingTheSetting) {
+  RejectingProblem problem;
+  problem.rejecting().limit = 1e-3 * problem.first_step.norm();
+  auto coupled = make("type: relaxation\nomega: 1.3\nbacktracking: {retries: 3, factor: 0.5}");
+  coupled->initialize(*problem.flow, *problem.structure);
+  const std::string message =
+      cocopp::testing::error_message<SolverError>([&] { coupled->solve_step(1, 0.1); });
+  EXPECT_NE(message.find("the displacement is too large"), std::string::npos) << message;
+  EXPECT_NE(message.find("stepped back 3 times"), std::string::npos) << message;
+  EXPECT_NE(message.find("coupled_solver.backtracking.retries = 3"), std::string::npos) << message;
+  EXPECT_EQ(problem.rejecting().inputs.size(), 5u);  // accepted, rejected, 3 retries
 }

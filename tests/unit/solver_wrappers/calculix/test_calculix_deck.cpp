@@ -308,7 +308,8 @@ TEST_F(CalculixWithoutCcx, TooManyCutbacksIsNonConvergence) {
                         "echo ' *ERROR: too many cutbacks'\nexit 201"));
   test_.wrapper().initialize();
   test_.wrapper().initialize_step(3, 3.0);
-  const std::string message = testing::error_message<SolverError>([&] { test_.solve(1e6); });
+  const std::string message =
+      testing::error_message<SolverRejectedInput>([&] { test_.solve(1e6); });
   EXPECT_CONTAINS(message, "ccx did not converge at time step 3, coupling iteration 1");
   EXPECT_CONTAINS(message, "cut back too often");
   EXPECT_CONTAINS(message, "what to change");
