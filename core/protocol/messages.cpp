@@ -62,6 +62,8 @@ std::string message_name(MessageType type) {
       return "DATA";
     case MessageType::kError:
       return "ERROR";
+    case MessageType::kRejected:
+      return "REJECTED";
   }
   return "unknown message type " + std::to_string(static_cast<int>(type));
 }
@@ -111,6 +113,10 @@ Frame encode_data(const std::vector<double>& values) {
 
 Frame encode_error(const std::string& message) {
   return start(MessageType::kError).string(message).take();
+}
+
+Frame encode_rejected(const std::string& message) {
+  return start(MessageType::kRejected).string(message).take();
 }
 
 sdk::RunInfo decode_initialize(const Frame& frame) {
@@ -176,11 +182,21 @@ std::vector<double> decode_data(const Frame& frame) {
   return values;
 }
 
-std::string decode_error(const Frame& frame) {
-  FrameReader reader = open(frame, MessageType::kError);
+namespace {
+std::string decode_text(const Frame& frame, MessageType type) {
+  FrameReader reader = open(frame, type);
   auto message = reader.string();
   reader.expect_end();
   return message;
+}
+}  // namespace
+
+std::string decode_error(const Frame& frame) {
+  return decode_text(frame, MessageType::kError);
+}
+
+std::string decode_rejected(const Frame& frame) {
+  return decode_text(frame, MessageType::kRejected);
 }
 
 }  // namespace cocopp::protocol

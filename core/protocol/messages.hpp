@@ -30,6 +30,7 @@ enum class MessageType : std::uint8_t {
   kInterface = 130,
   kData = 131,
   kError = 132,
+  kRejected = 133,
 };
 
 /// "SOLVE", "INTERFACE", ...; "unknown message type 7" for anything else.
@@ -59,6 +60,9 @@ Frame encode_hello(const Hello& hello);
 Frame encode_interface(const sdk::InterfaceDescription& description);
 Frame encode_data(const std::vector<double>& values);
 Frame encode_error(const std::string& message);
+/// The reply to SOLVE of a solver that cannot solve the step for this input but keeps the
+/// step's start and serves on: the coupler may retry with another input.
+Frame encode_rejected(const std::string& message);
 
 // Decoding checks the type byte and that the frame holds exactly the message's fields.
 sdk::RunInfo decode_initialize(const Frame& frame);
@@ -69,5 +73,6 @@ Hello decode_hello(const Frame& frame);
 sdk::InterfaceDescription decode_interface(const Frame& frame);
 std::vector<double> decode_data(const Frame& frame);
 std::string decode_error(const Frame& frame);
+std::string decode_rejected(const Frame& frame);
 
 }  // namespace cocopp::protocol

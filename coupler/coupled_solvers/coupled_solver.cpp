@@ -174,16 +174,20 @@ Eigen::VectorXd CoupledSolver::evaluate_stepping_back(Eigen::VectorXd& x,
                                                       const Eigen::VectorXd& accepted, int step,
                                                       int iteration,
                                                       std::vector<std::string>& notes) {
+  std::string first_rejection;  // the one that says what went wrong with the iteration's input
   for (int retry = 1;; ++retry) {
     try {
       return evaluate(x, step, iteration);
     } catch (const SolverRejectedInput& e) {
+      if (first_rejection.empty()) first_rejection = e.what();
       if (retry > backtracking_retries_)
         throw SolverError(
             e.solver_name(),
-            fmt::format("{}\n(the coupled solver stepped back {} times towards the last input "
-                        "both solvers accepted, coupled_solver.backtracking.retries = {})",
-                        e.what(), backtracking_retries_, backtracking_retries_));
+            fmt::format("{}\n(time step {}, coupling iteration {}: the coupled solver stepped "
+                        "back {} times towards the last input both solvers accepted, "
+                        "coupled_solver.backtracking.retries = {})",
+                        first_rejection, step, iteration, backtracking_retries_,
+                        backtracking_retries_));
       // The rejected input lies too far from one the solver can take: the step towards it
       // from the last accepted input is too long, whatever made it (a quasi-Newton update
       // from poor secant information, an extrapolating predictor).

@@ -95,7 +95,11 @@ void follow_master(PimpleFoamSolver& solver) {
         solver.initialize_step(static_cast<std::int32_t>(numbers.at(0)), numbers.at(1));
         break;
       case Command::kSolve:
-        solver.solve(numbers);
+        try {
+          solver.solve(numbers);
+        } catch (const sdk::InputRejected&) {
+          // The master rejects it to the coupler (the check is reduced over the ranks).
+        }
         break;
       case Command::kFinalizeStep:
         solver.finalize_step();

@@ -74,7 +74,7 @@ void PimpleFoamSolver::create_case(const sdk::RunInfo& run) {
                          << "displacementLaplacian) in " << runTime.constant() / "dynamicMeshDict"
                          << ", not " << motion.type() << exit(FatalError);
 
-  pimple_.reset(new pimpleControl(mesh));
+  pimple_.reset(new RestartablePimpleControl(mesh));
   const dictionary& pimple_dict = pimple_->dict();
   correct_phi_ = pimple_dict.lookupOrDefault("correctPhi", mesh.dynamic());
   check_mesh_courant_number_ = pimple_dict.lookupOrDefault("checkMeshCourantNo", false);
@@ -262,7 +262,12 @@ std::vector<double> PimpleFoamSolver::solve(const std::vector<double>& input) {
     }
     set_interface_displacement(input);
     const auto pimple_start = Clock::now();
-    solve_pimple();
+    try {
+      solve_pimple();
+    } catch (const sdk::InputRejected&) {
+      pimple_->abandon_loop();  // the next solve restores the step's start (iteration_ > 1)
+      throw;
+    }
     const auto pimple_end = Clock::now();
     std::vector<double> output = loads();
     // What the coupling adds inside the solver (restoring the step's start, the interface
@@ -360,14 +365,18 @@ void PimpleFoamSolver::check_cells_not_inverted() const {
   }
   if (returnReduce(inverted, sumOp<label>()) == 0) return;
   const vector centre = worst >= 0 ? mesh_->C()[worst] : vector::zero;
-  FatalErrorInFunction << "the mesh motion of coupling iteration " << iteration_ << " at time "
-                       << run_time_->timeName() << " turned " << inverted
-                       << " cell(s) inside out (the worst, cell " << worst << " at " << centre
-                       << ", has volume " << (worst >= 0 ? volumes[worst] : 0.0)
-                       << "): a boundary moved across the cells next to it. What to change: a "
-                          "wall that closes more slowly (a smaller prescribed motion per time "
-                          "step), a smaller time step, or more room between the walls"
-                       << exit(FatalError);
+  // The input may be at fault (a coupling iterate far off): reject it, so that the coupler
+  // can step back; if the prescribed motion alone inverts cells, the retries fail alike.
+  OStringStream message;
+  message << "the mesh motion of coupling iteration " << iteration_ << " at time "
+          << run_time_->timeName() << " turned " << inverted
+          << " cell(s) inside out (the worst, cell " << worst << " at " << centre << ", has volume "
+          << (worst >= 0 ? volumes[worst] : 0.0)
+          << "): a boundary moved across the cells next to it. What to change: a wall that "
+             "closes more slowly (a smaller prescribed motion per time step), a smaller time "
+             "step, or more room between the walls";
+  Info << "cocopp: input rejected: " << message.str().c_str() << nl << endl;
+  throw sdk::InputRejected(message.str());
 }
 
 std::vector<double> PimpleFoamSolver::loads() const {

@@ -38,6 +38,19 @@ namespace cocopp::openfoam {
 
 class StepStartState;
 
+/// pimpleControl that can abandon a PIMPLE loop part way (an input rejected after the mesh
+/// motion), so that the next solve starts again from the first outer corrector.
+class RestartablePimpleControl : public Foam::pimpleControl {
+ public:
+  using Foam::pimpleControl::pimpleControl;
+  void abandon_loop() {
+    corr_ = 0;
+    corrPISO_ = 0;
+    converged_ = false;
+    mesh_.data::remove("finalIteration");
+  }
+};
+
 class PimpleFoamSolver : public sdk::Solver {
  public:
   PimpleFoamSolver(Foam::argList& args, const Foam::wordList& patch_names);
@@ -63,7 +76,8 @@ class PimpleFoamSolver : public sdk::Solver {
   void set_interface_displacement(const std::vector<double>& input);
   /// One PIMPLE time step without advancing time: the body of pimpleFoam's time loop.
   void solve_pimple();
-  /// Stops with a message if the mesh motion left a cell with no or negative volume.
+  /// Rejects the input (sdk::InputRejected) if the mesh motion left a cell with no or negative
+  /// volume.
   void check_cells_not_inverted() const;
   std::vector<double> loads() const;
   sdk::InterfaceDescription interface_description() const;
@@ -77,7 +91,7 @@ class PimpleFoamSolver : public sdk::Solver {
 
   Foam::autoPtr<Foam::Time> run_time_;
   Foam::autoPtr<Foam::dynamicFvMesh> mesh_;
-  Foam::autoPtr<Foam::pimpleControl> pimple_;
+  Foam::autoPtr<RestartablePimpleControl> pimple_;
   Foam::autoPtr<Foam::volScalarField> p_;
   Foam::autoPtr<Foam::volVectorField> U_;
   Foam::autoPtr<Foam::surfaceScalarField> phi_;

@@ -37,6 +37,12 @@ struct ReportedError : std::exception {
   std::string text;
 };
 
+/// The solver answered SOLVE with REJECTED: it serves on from the step's start.
+struct RejectedInput : std::exception {
+  explicit RejectedInput(std::string text) : text(std::move(text)) {}
+  std::string text;
+};
+
 auto decode_ok = [](const Frame& frame) { protocol::decode_empty(frame, MessageType::kOk); };
 
 }  // namespace
@@ -62,6 +68,10 @@ auto ProcessSolverWrapper::guarded(const std::string& request_name, double timeo
   ensure_running();
   try {
     return exchange();
+  } catch (const RejectedInput& rejection) {
+    throw SolverRejectedInput(
+        name_, fmt::format("solver '{}' rejected the input {}: {}\n(log: {})", name_,
+                           at_position(request_name), rejection.text, log_file_.string()));
   } catch (const ReportedError& error) {
     child_->wait_for_exit(kExitAfterErrorSeconds);
     fail(fmt::format("solver '{}' reported an error: {}\n(during {} {}; log: {})", name_,
@@ -101,6 +111,8 @@ auto ProcessSolverWrapper::call(const std::string& request_name, const Frame* re
     const Frame reply = channel_->receive(timeout_seconds, alive_check());
     const MessageType type = protocol::message_type(reply);
     if (type == MessageType::kError) throw ReportedError(protocol::decode_error(reply));
+    if (type == MessageType::kRejected && expected_reply == MessageType::kData)
+      throw RejectedInput(protocol::decode_rejected(reply));
     if (type != expected_reply)
       throw protocol::ProtocolError("answered " + request_name + " with " +
                                     protocol::message_name(type) + " instead of " +

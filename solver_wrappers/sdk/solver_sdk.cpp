@@ -141,7 +141,14 @@ class Server {
     if (input.size() != input_size_)
       throw protocol::ProtocolError("SOLVE carried " + std::to_string(input.size()) +
                                     " values; the interface takes " + std::to_string(input_size_));
-    const std::vector<double> output = solver_.solve(input);
+    std::vector<double> output;
+    try {
+      output = solver_.solve(input);
+    } catch (const InputRejected& e) {
+      std::cerr << "cocopp solver: input rejected: " << e.what() << "\n";
+      channel_.send(protocol::encode_rejected(e.what()));
+      return;
+    }
     if (output.size() != output_size_)
       throw std::runtime_error("solve() returned " + std::to_string(output.size()) +
                                " values; the interface description implies " +

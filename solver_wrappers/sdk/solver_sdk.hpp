@@ -9,12 +9,22 @@
 // Exceptions thrown by the Solver's methods are sent to the coupler as error messages.
 // The SDK has no dependency beyond the C++ standard library.
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "core/protocol/interface_description.hpp"
 
 namespace cocopp::sdk {
+
+/// Thrown by Solver::solve() when the solver cannot solve the time step for this input (a mesh
+/// the input would turn inside out, a structure loaded beyond what it can carry) but still
+/// holds the step's start state: the coupler is told (REJECTED), the solver serves on, and the
+/// coupler may call solve() again with another input. Any other exception ends the solver.
+class InputRejected : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 /// Interface data layout (both directions): for each model part in order, for each of its
 /// (input or output) variables in order, all points, components contiguous.

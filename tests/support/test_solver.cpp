@@ -7,10 +7,11 @@
 //
 // Its input file (argument 1, default test_solver.in) holds `key value` lines:
 //   points 5            number of points (default 4)
-//   fail none           none | crash | hang | nan | error | exit
+//   fail none           none | crash | hang | nan | error | exit | reject
 //   fail_step 1         step at which to fail; 0 = during initialize
 //   fail_iteration 1    coupling iteration (solve call within the step, from 1) at which to fail
-// crash = SIGSEGV, hang = sleep forever, nan = NaN outputs, error = throw, exit = exit(3).
+// crash = SIGSEGV, hang = sleep forever, nan = NaN outputs, error = throw, exit = exit(3),
+// reject = reject that input (sdk::InputRejected) and serve on.
 #include <unistd.h>
 
 #include <csignal>
@@ -61,7 +62,8 @@ Options read_options(const std::string& file) {
       throw std::runtime_error("test solver: " + file + ": unknown key '" + key + "'");
     if (!in) throw std::runtime_error("test solver: " + file + ": bad value for '" + key + "'");
   }
-  static const std::set<std::string> modes = {"none", "crash", "hang", "nan", "error", "exit"};
+  static const std::set<std::string> modes = {"none",  "crash", "hang",  "nan",
+                                              "error", "exit",  "reject"};
   if (!modes.count(options.fail))
     throw std::runtime_error("test solver: unknown fail mode '" + options.fail + "'");
   if (options.points < 0) throw std::runtime_error("test solver: points must be >= 0");
@@ -133,6 +135,8 @@ class TestSolver : public cocopp::sdk::Solver {
     if (options_.fail == "exit") std::exit(3);
     if (options_.fail == "error")
       throw std::runtime_error("test solver: requested error at " + where);
+    if (options_.fail == "reject")
+      throw cocopp::sdk::InputRejected("test solver: requested rejection at " + where);
     if (options_.fail == "hang")
       for (;;) ::pause();
   }

@@ -43,6 +43,8 @@ TEST(MessagesTest, RepliesRoundTrip) {
   EXPECT_EQ(decode_data(encode_data({0.5, 0.25})), (std::vector<double>{0.5, 0.25}));
   EXPECT_EQ(decode_error(encode_error("diverged: Courant number 12")),
             "diverged: Courant number 12");
+  EXPECT_EQ(decode_rejected(encode_rejected("2 cells inside out")), "2 cells inside out");
+  EXPECT_EQ(message_name(message_type(encode_rejected("x"))), "REJECTED");
 
   const auto original = two_part_description();
   const auto decoded = decode_interface(encode_interface(original));
@@ -63,6 +65,7 @@ TEST(MessagesTest, FirstByteIsTheType) {
   EXPECT_EQ(encode_solve(nullptr, 0)[0], 3);
   EXPECT_EQ(encode_hello({})[0], 128);
   EXPECT_EQ(encode_error("x")[0], 132);
+  EXPECT_EQ(encode_rejected("x")[0], 133);
 }
 
 TEST(MessagesTest, WrongTypeIsAProtocolErrorNamingBoth) {

@@ -214,6 +214,28 @@ TEST_P(ProcessSolverWrapperTest, AReportedErrorIsRelayed) {
   expect_cleaned_up(wrapper);
 }
 
+// A rejected input is no failure: the solver serves on and solves the next input.
+TEST_P(ProcessSolverWrapperTest, ARejectedInputIsRelayedAndTheSolverServesOn) {
+  auto& wrapper = start("points 2\nfail reject\nfail_step 1\nfail_iteration 2\n");
+  wrapper.initialize();
+  wrapper.initialize_step(1, 0.01);
+  Interface input = wrapper.input_interface();
+  input.values("wall", "displacement").setConstant(0.5);
+  const Eigen::VectorXd first = wrapper.solve(input).data();
+  const std::string message = cocopp::testing::error_message<SolverRejectedInput>(
+      [&] { wrapper.solve(wrapper.input_interface()); });
+  EXPECT_EQ(message.rfind("solver 'flow' rejected the input at step 1, iteration 2: test solver: "
+                          "requested rejection at step 1 iteration 2",
+                          0),
+            0u)
+      << message;
+  EXPECT_CONTAINS(message, (directory_ / "flow/flow.log").string());
+  EXPECT_EQ(wrapper.solve(input).data(), first);
+  wrapper.finalize_step();
+  wrapper.finalize();
+  expect_cleaned_up(wrapper);
+}
+
 TEST_P(ProcessSolverWrapperTest, AnErrorDuringInitializeIsRelayed) {
   auto& wrapper = start("points 2\nfail_mode error\n");
   const std::string message = solver_error_of([&] { wrapper.initialize(); });
