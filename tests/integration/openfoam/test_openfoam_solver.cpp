@@ -10,6 +10,7 @@
 #include "solver_wrappers/process/process_solver_wrapper.hpp"
 #include "solver_wrappers/solver_error.hpp"
 #include "tests/integration/openfoam/openfoam_files.hpp"
+#include "tests/support/error_message.hpp"
 
 namespace cocopp {
 namespace {
@@ -171,6 +172,36 @@ TEST_F(OpenFoamSolverTest, RepeatedSolvesOfAStepStartFromTheSameState) {
     fluid.finalize_step();
   }
   fluid.finalize();
+}
+
+// A displacement that pushes the wall through the channel (height 0.01 m) is rejected, and the
+// solver serves on from the step's start: serial, and with the check reduced over 2 ranks.
+TEST_F(OpenFoamSolverTest, ADisplacementThatInvertsCellsIsRejectedAndTheStepStartKept) {
+  auto bump = [](double amplitude) {
+    return [amplitude](const Eigen::Vector3d& x) {
+      return Eigen::Vector3d(0.0, -amplitude * std::sin(M_PI * x.x() / kLength), 0.0);
+    };
+  };
+  for (const std::string cores : {"", "cores: 2\n"}) {
+    const std::string name = cores.empty() ? "serial" : "parallel";
+    make_case(directory_ / name);
+    SolverWrapper& fluid = start(name, cores);
+    fluid.initialize_step(1, kDeltaT);
+    const Eigen::VectorXd first = fluid.solve(displacement(bump(2e-4))).data();
+    const std::string message = testing::error_message<SolverRejectedInput>(
+        [&] { fluid.solve(displacement(bump(0.015))); });
+    EXPECT_NE(message.find("solver 'fluid' rejected the input at step 1, iteration 2: "),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("cell(s) inside out"), std::string::npos) << message;
+    const Eigen::VectorXd again = fluid.solve(displacement(bump(2e-4))).data();
+    EXPECT_LE((again - first).norm(), 1e-13 * first.norm()) << name;
+    fluid.finalize_step();
+    fluid.initialize_step(2, 2 * kDeltaT);
+    EXPECT_TRUE(fluid.solve(displacement(bump(2e-4))).data().allFinite());
+    fluid.finalize_step();
+    fluid.finalize();
+  }
 }
 
 TEST_F(OpenFoamSolverTest, PrescribedRigidDisplacementMovesThePatchExactly) {
