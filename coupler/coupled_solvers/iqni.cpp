@@ -1,6 +1,12 @@
 // iqni: interface quasi-Newton with an approximation of the inverse Jacobian (IQN-I), the
 // Jacobian model chosen by `model` (ls = IQN-ILS). x^(k+1) = x~^k + W c, where the model fits
 // V c ~ -r^k; relaxation with omega until the model has information.
+//
+// `mixing` (beta, model ls only) is Anderson acceleration's mixing parameter (Walker and Ni,
+// 2011): x^(k+1) = x~^k + W c - (1 - beta) (r^k + V c). IQN-ILS is beta = 1: the part of the
+// residual the secant columns do not explain, r^k + V c, gets a Gauss-Seidel step. Where
+// Gauss-Seidel amplifies errors a hundredfold (a wire yielding under a stiff film), that step
+// throws the iterate far off; beta relaxes it, as omega relaxes the first step.
 #include <fmt/format.h>
 
 #include "coupler/coupled_solvers/coupled_solver.hpp"
@@ -15,9 +21,14 @@ class Iqni : public CoupledSolver {
   explicit Iqni(const Settings& s)
       : CoupledSolver(s),
         omega_(s.get_in_range("omega", 0.01, {0.0, 2.0, true})),
+        mixing_(s.get_in_range("mixing", 1.0, {0.0, 1.0, true})),
         model_type_(s.child("model").required<std::string>("type")),
         model_(ModelRegistry::instance().create(s.child("model"))),
-        scaling_(s) {}
+        scaling_(s) {
+    if (mixing_ != 1.0 && !model_->fits_residuals())
+      s.fail("mixing", "is defined for model 'ls' only (model '" + model_type_ +
+                           "' approximates a Jacobian, not a least-squares fit of residuals)");
+  }
 
  protected:
   void on_initialized() override { scaling_.bind({&x()}); }
@@ -36,7 +47,12 @@ class Iqni : public CoupledSolver {
     if (model_->is_ready()) {
       const Eigen::VectorXd dxt = model_->predict(-weighted_r);
       // Filtering may have removed every column: then relax as in the first iteration.
-      if (model_->columns() > 0) return xt + dxt;
+      if (model_->columns() > 0) {
+        if (mixing_ == 1.0) return xt + dxt;
+        const Eigen::VectorXd unexplained =
+            scaling_.remove(0, weighted_r + model_->fitted(-weighted_r));
+        return xt + dxt - (1.0 - mixing_) * unexplained;
+      }
     }
     return x + omega_ * r;
   }
@@ -58,11 +74,13 @@ class Iqni : public CoupledSolver {
 
   std::string describe_settings() const override {
     const std::string scaling = scaling_.enabled() ? ", scaling " + scaling_.describe() : "";
-    return fmt::format("omega {:g}, model {}{}", omega_, model_type_, scaling);
+    const std::string mixing = mixing_ == 1.0 ? "" : fmt::format(", mixing {:g}", mixing_);
+    return fmt::format("omega {:g}{}, model {}{}", omega_, mixing, model_type_, scaling);
   }
 
  private:
   double omega_;
+  double mixing_;  ///< Anderson's beta: 1 is IQN-ILS
   std::string model_type_;
   std::unique_ptr<Model> model_;
   VariableScaling scaling_;

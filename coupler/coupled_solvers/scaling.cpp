@@ -76,6 +76,11 @@ Eigen::VectorXd VariableScaling::apply(std::size_t index, const Eigen::VectorXd&
   return layout.weights.cwiseProduct(values);
 }
 
+Eigen::VectorXd VariableScaling::remove(std::size_t index, const Eigen::VectorXd& weighted) const {
+  if (!enabled()) return weighted;
+  return weighted.cwiseQuotient(layouts_.at(index).weights);
+}
+
 void VariableScaling::save_state(State& state) const {
   for (const auto& [variable, weight] : weights_) state.set(variable, weight);
 }

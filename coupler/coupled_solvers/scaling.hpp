@@ -38,6 +38,9 @@ class VariableScaling {
   /// first call with a non-zero variable fixes that variable's weight.
   Eigen::VectorXd apply(std::size_t index, const Eigen::VectorXd& values);
 
+  /// The unweighted values of weighted ones (after apply() has fixed the weights they used).
+  Eigen::VectorXd remove(std::size_t index, const Eigen::VectorXd& weighted) const;
+
   bool enabled() const { return automatic_ || !fixed_.empty(); }
   /// "automatic" or "pressure 1e-05, traction 1"; "" when off.
   std::string describe() const;

@@ -272,11 +272,16 @@ def wire_deck(p, refine):
               "** speed (case.yaml: frame_velocity), so the exit end is held here.",
               "*BOUNDARY", "AXIS, 1, 1", "EXIT, 2, 2",
               "** Quasi-static: inertia is below 1e-2 of the stresses (docs/wire-drawing.md).",
-              "*STEP, NLGEOM, INC=1000", "*STATIC",
+              "** A step that needs more increments than INC gives up: the coupler steps back.",
+              f"*STEP, NLGEOM, INC={p['calculix']['max_increments']}", "*STATIC",
               f"{time['delta_t']:.13g}, {time['delta_t']:.13g}, {time['delta_t'] * 1e-6:.13g}, "
               f"{time['delta_t']:.13g}",
               "** The back force: a uniform tension on the entry end (a negative pressure).",
               "*DLOAD", f"ENTRY, P1, {-tension:.13g}",
+              "** Newton's tolerances: largest residual force / mean force, largest correction /",
+              "** the increment's largest displacement (ccx's defaults: 0.005, 0.01).",
+              "*CONTROLS, PARAMETERS=FIELD",
+              f"{p['calculix']['residual_tolerance']:g}, {p['calculix']['correction_tolerance']:g}",
               "*NODE FILE", "U, RF", "*EL FILE", "S, PEEQ",
               "** Stresses at the integration points, for the check against the yield stress",
               "*EL PRINT, ELSET=SKIN", "S, PEEQ", "*END STEP"]
@@ -293,7 +298,8 @@ settings:
   number_of_timesteps: {time['steps']}
 coupled_solver:
   type: iqni                      # interface quasi-Newton, as the paper
-  omega: 0.01
+  omega: {p['coupling']['omega']:g}                     # relaxation of a step's first update
+  mixing: {p['coupling']['mixing']:g}                      # 1: IQN-ILS; < 1: the unexplained residual relaxed (ls only)
   model:
     type: {p['coupling']['model']}                      # ls: IQN-ILS (the paper's); mvmf: IQN-MVJ
     q: {p['coupling']['reuse_steps']}                         # earlier steps whose secant information is reused

@@ -340,7 +340,8 @@ void CalculixSolverWrapper::run_ccx() {
           name_,
           fmt::format(
               "solver '{}': ccx did not converge at {} ({}: the increment size fell below the "
-              "minimum or it was cut back too often); what to change: a smaller time step "
+              "minimum, it was cut back too often or the step needed more increments than "
+              "*STEP, INC= allows); what to change: a smaller time step "
               "(settings.delta_t), a smaller minimum "
               "increment on the deck's *STATIC or *DYNAMIC line, or loads the structure can carry "
               "(a coupled load far beyond its limit load diverges); deck {}, last lines of {}:\n{}",

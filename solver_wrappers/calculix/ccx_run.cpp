@@ -94,10 +94,11 @@ CcxRunResult run_ccx(const CcxRunOptions& options) {
   }
   if (result.exit_code == 0) return result;
   const std::string log = read_text(options.log_file);
-  // ccx gives up an increment in two ways: the increment fell below the minimum, or it was
-  // cut back more often than its controls allow.
+  // ccx gives up a step in three ways: an increment fell below the minimum, it was cut back
+  // more often than its controls allow, or the step needed more increments than *STEP, INC=.
   if (log.find("increment size smaller than minimum") != std::string::npos ||
-      log.find("too many cutbacks") != std::string::npos) {
+      log.find("too many cutbacks") != std::string::npos ||
+      log.find("max. # of increments reached") != std::string::npos) {
     result.status = CcxRunResult::Status::kNotConverged;
     result.details = read_last_lines(options.log_file, kLogTailLines);
     return result;

@@ -32,6 +32,13 @@ class LeastSquares : public Model {
     return columns_.combine_w(columns_.coefficients(dr));
   }
 
+  bool fits_residuals() const override { return true; }
+
+  Eigen::VectorXd fitted(const Eigen::VectorXd& dr) override {
+    if (columns_.empty()) return Eigen::VectorXd::Zero(dr.size());
+    return columns_.combine_v(columns_.coefficients(dr));
+  }
+
   void finalize_step() override { columns_.age_and_drop(reused_steps_); }
 
   int columns() const override { return columns_.size(); }

@@ -24,6 +24,12 @@ class Model {
   virtual bool is_ready() const = 0;
   /// Approximate dx~ for a residual change dr (from the least-squares fit W c, V c ~ dr).
   virtual Eigen::VectorXd predict(const Eigen::VectorXd& dr) = 0;
+  /// Whether the model is such a least-squares fit, so that fitted() is defined.
+  virtual bool fits_residuals() const { return false; }
+  /// The part of dr the secant columns reproduce: V c of predict()'s fit.
+  virtual Eigen::VectorXd fitted(const Eigen::VectorXd& dr) {
+    return Eigen::VectorXd::Zero(dr.size());
+  }
   /// Called when the time step converged: keep this step's information for reuse.
   virtual void finalize_step() = 0;
   /// Number of secant columns currently in use (for reports and tests).

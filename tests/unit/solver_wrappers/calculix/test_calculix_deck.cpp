@@ -316,6 +316,17 @@ TEST_F(CalculixWithoutCcx, TooManyCutbacksIsNonConvergence) {
   EXPECT_EQ(message.find("rejected the input deck"), std::string::npos) << message;
 }
 
+TEST_F(CalculixWithoutCcx, TooManyIncrementsIsNonConvergence) {
+  test_.create(cylinder_.deck(),
+               fake_ccx("echo ' *ERROR in nonlingeo: max. # of increments reached'\nexit 201"));
+  test_.wrapper().initialize();
+  test_.wrapper().initialize_step(2, 2.0);
+  const std::string message =
+      testing::error_message<SolverRejectedInput>([&] { test_.solve(1e6); });
+  EXPECT_CONTAINS(message, "ccx did not converge at time step 2, coupling iteration 1");
+  EXPECT_CONTAINS(message, "more increments than *STEP, INC= allows");
+}
+
 TEST_F(CalculixWithoutCcx, HangIsStoppedAfterTheTimeout) {
   test_.create(cylinder_.deck(), fake_ccx("exec sleep 30") + "timeout: 0.3\n");
   test_.wrapper().initialize();
