@@ -97,11 +97,18 @@ void CoupledSolver::check_interfaces_match() const {
 
 template <class Call>
 void CoupledSolver::timed(int index, Call call) {
-  const auto start = Clock::now();
+  // Also a call that throws (a rejected input) took the solver's time, not the coupler's.
+  struct Stopwatch {
+    CoupledSolver& owner;
+    int index;
+    Clock::time_point start = Clock::now();
+    ~Stopwatch() {
+      const double elapsed = seconds_since(start);
+      owner.solver_time_step_[index] += elapsed;
+      owner.solver_time_total_[index] += elapsed;
+    }
+  } stopwatch{*this, index};
   call();
-  const double elapsed = seconds_since(start);
-  solver_time_step_[index] += elapsed;
-  solver_time_total_[index] += elapsed;
 }
 
 const Interface& CoupledSolver::timed_solve(int index, const Interface& input) {

@@ -1,6 +1,9 @@
 // Coupled solvers on an affine coupled problem with a known solution.
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <thread>
+
 #include "coupler/coupled_solvers/coupled_solver.hpp"
 #include "solver_wrappers/solver_error.hpp"
 #include "tests/support/error_message.hpp"
@@ -209,10 +212,14 @@ class RejectingFlow : public AffineSolver {
   const Interface& solve(const Interface& input) override {
     const Eigen::VectorXd x = input.values("wall", "displacement").col(1);
     inputs.push_back(x);
-    if (x.norm() > limit) throw SolverRejectedInput(name(), "the displacement is too large");
+    if (x.norm() > limit) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(rejection_milliseconds));
+      throw SolverRejectedInput(name(), "the displacement is too large");
+    }
     return AffineSolver::solve(input);
   }
   double limit = 0.0;
+  int rejection_milliseconds = 0;  ///< what a rejection costs, as ccx's cutbacks do
   std::vector<Eigen::VectorXd> inputs;
 };
 
@@ -266,6 +273,16 @@ TEST(CoupledSolvers, RejectedInputIsRetriedHalfwayFromTheLastAcceptedOne) {
   // A rejected input is no iteration: one residual per accepted input.
   EXPECT_EQ(record.residual_norms.size(), std::size_t(record.iterations));
   EXPECT_GT(int(inputs.size()), record.iterations);
+}
+
+TEST(CoupledSolvers, TheTimeOfARejectedSolveIsTheSolvers) {
+  RejectingProblem problem;
+  problem.rejecting().limit = 0.5 * (problem.first_step.norm() + problem.solution.norm());
+  problem.rejecting().rejection_milliseconds = 200;
+  auto coupled = make("type: relaxation\nomega: 1.3", 200);
+  const StepRecord record = solve_one_step(*coupled, problem);
+  EXPECT_GE(record.solver_times[0], 0.2);
+  EXPECT_LT(record.coupler_time, 0.1);
 }
 
 TEST(CoupledSolvers, RejectionsBeyondTheRetriesStopTheRunNamingTheSetting) {
