@@ -35,7 +35,12 @@ def load_parameters(path, changes):
         section, _, name = key.partition(".")
         if section not in parameters or name not in parameters[section]:
             sys.exit(f"make_case.py: --set {change}: no parameter '{key}' in {path}")
-        parameters[section][name] = type(parameters[section][name])(yaml.safe_load(value))
+        default = parameters[section][name]
+        new = yaml.safe_load(value)
+        # A whole-number parameter (a count) must not take 0.05 silently as 0.
+        if isinstance(default, int) and not (isinstance(new, int) or float(new).is_integer()):
+            sys.exit(f"make_case.py: --set {change}: {key} is a whole number")
+        parameters[section][name] = type(default)(new)
     return parameters
 
 
