@@ -282,9 +282,14 @@ std::string CoupledSolver::divergence_advice() const {
 
 std::string CoupledSolver::describe() const {
   const std::string settings = describe_settings();
-  return fmt::format("{}{}, predictor {}, stop at {}", type_,
+  const std::string backtracking =
+      backtracking_retries_ == 0
+          ? ""
+          : fmt::format(", a rejected input retried {} times, the step shortened by {:g}",
+                        backtracking_retries_, backtracking_factor_);
+  return fmt::format("{}{}, predictor {}, stop at {}{}", type_,
                      settings.empty() ? "" : " (" + settings + ")", predictor_type_,
-                     criterion_->describe());
+                     criterion_->describe(), backtracking);
 }
 
 }  // namespace cocopp
