@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Figures of a wire drawing run (docs/wire-drawing.md) from its results file.
 
-    plot.py [CASE_DIR] [-o wire-drawing.png] [--parameters parameters.yaml]
+    plot.py [CASE_DIR] [-o wire-drawing.png] [--parameters parameters.yaml] [--until STEP]
 
 CASE_DIR is the case directory run.sh wrote (default results/case; it holds results/case.h5
 and the wire's structure/results/step_NNNNN.frd). Six panels: the equivalent (von Mises) and
@@ -36,6 +36,8 @@ def main():
     parser.add_argument("-o", "--output", default=None,
                         help="the figure (default: <case>/wire-drawing.png)")
     parser.add_argument("--parameters", default=str(HERE / "parameters.yaml"))
+    parser.add_argument("--until", type=int, default=None, metavar="STEP",
+                        help="plot the run up to this time step (default: all of it)")
     args = parser.parse_args()
     case = pathlib.Path(args.case)
     p, refine = made_with(case, args.parameters)
@@ -45,7 +47,9 @@ def main():
 
     with h5py.File(case / "results" / "case.h5", "r") as f:
         steps = f["steps/step"][:]
-        iterations = f["steps/iterations"][:]
+        if args.until is not None:
+            steps = steps[steps <= args.until]
+        iterations = f["steps/iterations"][:len(steps)]
         held = min(p["time"]["held_steps"], len(steps)) - 1
         last = len(steps) - 1
         rows = sorted({held, last})
