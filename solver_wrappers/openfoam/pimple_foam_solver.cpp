@@ -375,7 +375,6 @@ void PimpleFoamSolver::check_cells_not_inverted() const {
           << "): a boundary moved across the cells next to it. What to change: a wall that "
              "closes more slowly (a smaller prescribed motion per time step), a smaller time "
              "step, or more room between the walls";
-  Info << "cocopp: input rejected: " << message.str().c_str() << nl << endl;
   throw sdk::InputRejected(message.str());
 }
 

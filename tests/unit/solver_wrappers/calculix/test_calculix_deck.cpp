@@ -278,6 +278,13 @@ class CalculixWithoutCcx : public ::testing::Test {
     ::chmod(script.c_str(), 0755);
     return "executable: ./fake_ccx\n";
   }
+  /// The message of the input a fake ccx running `body` rejects in time step `step`.
+  std::string rejection_by(const std::string& body, int step) {
+    test_.create(cylinder_.deck(), fake_ccx(body));
+    test_.wrapper().initialize();
+    test_.wrapper().initialize_step(step, step);
+    return testing::error_message<SolverRejectedInput>([&] { test_.solve(1e6); });
+  }
   CalculixCase test_;
   SectorCylinder cylinder_;
 };
@@ -303,13 +310,10 @@ TEST_F(CalculixWithoutCcx, CrashIsReportedWithSignalAndPosition) {
 // ccx gives up an increment either below the minimum size or after too many cutbacks: both
 // are non-convergence (with what to change), not a deck error.
 TEST_F(CalculixWithoutCcx, TooManyCutbacksIsNonConvergence) {
-  test_.create(cylinder_.deck(),
-               fake_ccx("echo ' too slow convergence; the increment size is decreased'\n"
-                        "echo ' *ERROR: too many cutbacks'\nexit 201"));
-  test_.wrapper().initialize();
-  test_.wrapper().initialize_step(3, 3.0);
-  const std::string message =
-      testing::error_message<SolverRejectedInput>([&] { test_.solve(1e6); });
+  const std::string message = rejection_by(
+      "echo ' too slow convergence; the increment size is decreased'\n"
+      "echo ' *ERROR: too many cutbacks'\nexit 201",
+      3);
   EXPECT_CONTAINS(message, "ccx did not converge at time step 3, coupling iteration 1");
   EXPECT_CONTAINS(message, "cut back too often");
   EXPECT_CONTAINS(message, "what to change");
@@ -317,12 +321,8 @@ TEST_F(CalculixWithoutCcx, TooManyCutbacksIsNonConvergence) {
 }
 
 TEST_F(CalculixWithoutCcx, TooManyIncrementsIsNonConvergence) {
-  test_.create(cylinder_.deck(),
-               fake_ccx("echo ' *ERROR in nonlingeo: max. # of increments reached'\nexit 201"));
-  test_.wrapper().initialize();
-  test_.wrapper().initialize_step(2, 2.0);
   const std::string message =
-      testing::error_message<SolverRejectedInput>([&] { test_.solve(1e6); });
+      rejection_by("echo ' *ERROR in nonlingeo: max. # of increments reached'\nexit 201", 2);
   EXPECT_CONTAINS(message, "ccx did not converge at time step 2, coupling iteration 1");
   EXPECT_CONTAINS(message, "more increments than *STEP, INC= allows");
 }
