@@ -171,7 +171,7 @@ Eigen::VectorXd CoupledSolver::evaluate(const Eigen::VectorXd& x, int step, int 
   x_.set_data(x);
   const Interface& y = timed_solve(0, x_);
   check_finite(y, *solvers_[0], step, iteration);
-  y_.set_data(y.data());
+  y_.set_data(second_solver_input(x, y.data()));
   const Interface& xt = timed_solve(1, y_);
   check_finite(xt, *solvers_[1], step, iteration);
   return xt.data();

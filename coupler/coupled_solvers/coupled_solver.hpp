@@ -42,7 +42,8 @@ class CoupledSolver {
   /// Advance, iterate to convergence, commit and write one time step.
   StepRecord solve_step(int step, double time);
   /// The interfaces x (displacement) and y (loads): during a step the values of the current
-  /// coupling iteration, after it the converged values of the step.
+  /// coupling iteration (y as given to the second solver), after it the converged values of
+  /// the step.
   const Interface& x() const { return x_; }
   const Interface& y() const { return y_; }
   /// "iqni (omega 0.05, model ls q 10), predictor linear, until (...)": for the run header.
@@ -61,6 +62,12 @@ class CoupledSolver {
   /// the residual r = x~ - x.
   virtual Eigen::VectorXd next_input(const Eigen::VectorXd& x, const Eigen::VectorXd& xt,
                                      const Eigen::VectorXd& r) = 0;
+  /// The loads given to the second solver, from this iteration's x and the first solver's
+  /// output y~ = F(x): y~ itself, except in methods that also update y (ibqn).
+  virtual Eigen::VectorXd second_solver_input(const Eigen::VectorXd& /*x*/,
+                                              const Eigen::VectorXd& yt) {
+    return yt;
+  }
   /// The iteration that met the convergence criterion (no next_input follows): its secant
   /// information is still worth keeping for the next steps.
   virtual void on_converged(const Eigen::VectorXd& /*x*/, const Eigen::VectorXd& /*xt*/,

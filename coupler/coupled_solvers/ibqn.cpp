@@ -1,25 +1,22 @@
 // ibqn: interface block quasi-Newton (Vierendeels et al. 2007), with one secant model per
-// solver, in the Gauss-Seidel order of CoupledSolver.
+// solver, as CoCoNuT's ibqn.
 //
 // Formulation. The unknowns are the displacement x and the loads y; the coupled problem is
-// x = S(y), y = F(x). Newton's method on the block residual [S(y) - x; F(x) - y] solves
-//     [ I    -S' ] [dx]   [ x~ - x ]        x~ = S(y), y~ = F(x),
-//     [ -F'   I  ] [dy] = [ y~ - y ]        x <- x + dx, y <- y + dy,
-// with the Jacobians F' and S' replaced by secant models: model_f is fitted to the pairs
-// (x, y~) and predicts F' dx, model_s to the pairs (y, x~) and predicts S' dy (the `ls` model:
-// W c with V c ~ the given difference, i.e. the least-squares Jacobian on the span of the
-// secant differences). Eliminating dy gives the Schur complement on x, CoCoNuT's x-update:
-//     (I - S'F') dx = (x~ - x) + S' (y~ - y).
-// CoupledSolver evaluates F and then S on its output, so the y given to S is y~ = F(x) itself:
-// the second right-hand side vanishes, dy = F' dx, and each iteration solves
-//     (I - S'F') dx = r,    r = x~ - x,
-// matrix-free with GMRES (the operator is I minus a product of low-rank models, so GMRES
-// needs at most rank + 1 iterations). The new y is then F(x + dx), evaluated exactly rather
-// than predicted as y + dy. CoCoNuT also makes a block update of y before S, which needs a way
-// to change the y passed to S; in the order used here that half step is the exact F.
+// x = S(y), y = F(x). Newton's method on the block residual [S(y) - x; F(x) - y], with the
+// Jacobians F' and S' replaced by secant models (model_f fitted to the pairs (x, y~ = F(x)),
+// model_s to the pairs (y, x~ = S(y)); the `ls` model gives W c with V c ~ the difference,
+// the least-squares Jacobian on the span of the secant differences), is solved block by block,
+// each block with the other's newest data:
+//     (I - S'F') dx = (x~ - x) + S' (y~ - y),   x <- x + dx,  then y~ = F(x);
+//     (I - F'S') dy = (y~ - y) + F' (x~ - x),   y <- y + dy,  then x~ = S(y).
+// The second solve (second_solver_input) uses the x just updated and the x~ of the previous
+// iteration, so S gets loads that already account for the displacement update, not F(x)
+// itself. Both are solved matrix-free with GMRES: the operators are I minus a product of
+// low-rank models, so GMRES needs at most rank + 1 iterations.
 //
-// Until both models hold secant information (the first iteration of a run, or of every step
-// without reuse), x <- x + omega r, as in iqni.
+// Until both models hold secant information (the first iterations of a run, or of every step
+// without reuse), x <- x + omega r and S gets y~ = F(x), as in iqni; so does the first
+// iteration of every step, whose x comes from the predictor.
 #include <fmt/format.h>
 
 #include "coupler/coupled_solvers/coupled_solver.hpp"
@@ -59,23 +56,39 @@ class Ibqn : public CoupledSolver {
   void on_step_start() override {
     f_.model->initialize_step();
     s_.model->initialize_step();
+    first_iteration_ = true;
   }
   void on_step_end() override {
     f_.model->finalize_step();
     s_.model->finalize_step();
   }
 
-  void on_converged(const Eigen::VectorXd& x, const Eigen::VectorXd& xt,
+  Eigen::VectorXd second_solver_input(const Eigen::VectorXd& x,
+                                      const Eigen::VectorXd& yt) override {
+    f_.model->add(scaling_.apply(kX, x), yt);
+    yt_ = yt;
+    if (first_iteration_ || !both_have_information())
+      y_ = yt;
+    else
+      y_ = y_previous_ +
+           solve_block(&Ibqn::identity_minus_fs, (yt - y_previous_) + predict_f(xt_previous_ - x));
+    return y_;
+  }
+
+  void on_converged(const Eigen::VectorXd&, const Eigen::VectorXd& xt,
                     const Eigen::VectorXd&) override {
-    add_to_models(x, xt);
+    s_.model->add(scaling_.apply(kY, y_), xt);
   }
 
   Eigen::VectorXd next_input(const Eigen::VectorXd& x, const Eigen::VectorXd& xt,
                              const Eigen::VectorXd& r) override {
-    add_to_models(x, xt);
+    s_.model->add(scaling_.apply(kY, y_), xt);
+    first_iteration_ = false;
+    y_previous_ = y_;
+    xt_previous_ = xt;
     // Filtering may leave a model without columns: then relax as in the first iteration.
-    if (!f_.has_information() || !s_.has_information()) return x + omega_ * r;
-    return x + block_update(r);
+    if (!both_have_information()) return x + omega_ * r;
+    return x + solve_block(&Ibqn::identity_minus_sf, r + predict_s(yt_ - y_));
   }
 
   std::vector<std::string> take_notes() override {
@@ -104,21 +117,29 @@ class Ibqn : public CoupledSolver {
   }
 
  private:
-  void add_to_models(const Eigen::VectorXd& x, const Eigen::VectorXd& xt) {
-    // y() holds F(x) of this iteration: the base class stores it before calling S.
-    const Eigen::VectorXd& y = this->y().data();
-    f_.model->add(scaling_.apply(kX, x), y);
-    s_.model->add(scaling_.apply(kY, y), xt);
+  bool both_have_information() const { return f_.has_information() && s_.has_information(); }
+
+  /// F' dx and S' dy from the secant models (their inputs weighted as they were fitted).
+  Eigen::VectorXd predict_f(const Eigen::VectorXd& dx) {
+    return f_.model->predict(scaling_.apply(kX, dx));
+  }
+  Eigen::VectorXd predict_s(const Eigen::VectorXd& dy) {
+    return s_.model->predict(scaling_.apply(kY, dy));
+  }
+  /// The block operators I - S'F' (on dx) and I - F'S' (on dy).
+  Eigen::VectorXd identity_minus_sf(const Eigen::VectorXd& dx) {
+    return dx - predict_s(predict_f(dx));
+  }
+  Eigen::VectorXd identity_minus_fs(const Eigen::VectorXd& dy) {
+    return dy - predict_f(predict_s(dy));
   }
 
-  /// dx with (I - S'F') dx = r. A GMRES that stops at maximum_iterations still returns the
-  /// best dx of its Krylov space; the coupling iteration corrects what remains.
-  Eigen::VectorXd block_update(const Eigen::VectorXd& r) {
-    auto apply = [this](const Eigen::VectorXd& dx) -> Eigen::VectorXd {
-      const Eigen::VectorXd dy = f_.model->predict(scaling_.apply(kX, dx));
-      return dx - s_.model->predict(scaling_.apply(kY, dy));
-    };
-    return gmres(apply, r, tolerance_, maximum_iterations_).x;
+  /// The solution of operator(d) = b. A GMRES that stops at maximum_iterations still returns
+  /// the best d of its Krylov space; the coupling iteration corrects what remains.
+  using BlockOperator = Eigen::VectorXd (Ibqn::*)(const Eigen::VectorXd&);
+  Eigen::VectorXd solve_block(BlockOperator block, const Eigen::VectorXd& b) {
+    auto apply = [this, block](const Eigen::VectorXd& d) { return (this->*block)(d); };
+    return gmres(apply, b, tolerance_, maximum_iterations_).x;
   }
 
   double omega_;
@@ -128,6 +149,12 @@ class Ibqn : public CoupledSolver {
   NamedModel s_;
   VariableScaling scaling_;  ///< weights of the models' inputs: x (kX) and y (kY)
   static constexpr std::size_t kX = 0, kY = 1;
+
+  bool first_iteration_ = true;  ///< of the step: S gets y~ = F(x)
+  Eigen::VectorXd y_;            ///< the loads given to S in this iteration
+  Eigen::VectorXd yt_;           ///< F(x) of this iteration
+  Eigen::VectorXd y_previous_;   ///< the loads given to S in the previous iteration
+  Eigen::VectorXd xt_previous_;  ///< S's output of the previous iteration
 };
 
 }  // namespace

@@ -83,6 +83,52 @@ TEST(Ibqn, SolvesAnAffineProblemThatGaussSeidelCannot) {
   EXPECT_LE(record.iterations, n + 2);
 }
 
+// The full block method: once both models have secant information, the structure gets the
+// loads of the block update y + dy, not the flow's output F(x) for the same x (the variant
+// before the full method did that, and needed 3.98 instead of 3.58 iterations per step on the
+// tube); at convergence the two agree.
+TEST(Ibqn, TheStructureGetsTheBlockUpdateOfTheLoads) {
+  const int n = 8;
+  Problem problem(n, -80.0, -1.2);
+  struct Recording : SolverWrapper {
+    Recording(SolverWrapper& inner, std::vector<Eigen::VectorXd>& log) : inner(inner), log(log) {}
+    const std::string& name() const override { return inner.name(); }
+    void initialize() override { inner.initialize(); }
+    const Interface& input_interface() const override { return inner.input_interface(); }
+    const Interface& output_interface() const override { return inner.output_interface(); }
+    void initialize_step(int step, double time) override { inner.initialize_step(step, time); }
+    void finalize_step() override { inner.finalize_step(); }
+    void output_step() override { inner.output_step(); }
+    void finalize() override { inner.finalize(); }
+    const Interface& solve(const Interface& input) override {
+      log.push_back(input.data());
+      const Interface& output = inner.solve(input);
+      log.push_back(output.data());
+      return output;
+    }
+    SolverWrapper& inner;
+    std::vector<Eigen::VectorXd>& log;
+  };
+  std::vector<Eigen::VectorXd> flow_log, structure_log;  // input, output, input, output, ...
+  Recording flow(*problem.flow, flow_log), structure(*problem.structure, structure_log);
+  auto coupled = make(kIbqn);
+  coupled->initialize(flow, structure);
+  const StepRecord record = coupled->solve_step(1, 0.1);
+  ASSERT_TRUE(record.converged);
+  ASSERT_GE(record.iterations, 4);
+  for (int k = 0; k < record.iterations; ++k) {
+    const Eigen::VectorXd& flow_output = flow_log[2 * k + 1];
+    const Eigen::VectorXd& structure_input = structure_log[2 * k];
+    const double difference = (structure_input - flow_output).norm() / flow_output.norm();
+    if (k < 2)  // before model_s has a secant pair: Gauss-Seidel
+      EXPECT_EQ(difference, 0.0) << "iteration " << k + 1;
+    else if (k < record.iterations - 1)
+      EXPECT_GT(difference, 1e-6) << "iteration " << k + 1;
+    else
+      EXPECT_LT(difference, 1e-8) << "iteration " << k + 1 << " (converged)";
+  }
+}
+
 TEST(Ibqn, DescribesItsModels) {
   auto coupled = make(
       "type: ibqn\nomega: 0.05\nmodel_f: {type: ls, q: 10}\n"
