@@ -1,4 +1,8 @@
-// aitken: relaxation with a dynamic factor from the last two residuals.
+// aitken: relaxation with a dynamic factor from the last two residuals (Irons and Tuck 1969;
+// for FSI, Kuttler and Wall 2008):
+//     omega_k = -omega_(k-1) r_(k-1) . (r_k - r_(k-1)) / |r_k - r_(k-1)|^2,   x <- x + omega_k r_k.
+// The factor is updated with every new residual, also the one that ends a step, as CoCoNuT
+// does; the next step starts from that factor, capped at omega_max.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -23,15 +27,13 @@ class Aitken : public CoupledSolver {
 
   Eigen::VectorXd next_input(const Eigen::VectorXd& x, const Eigen::VectorXd&,
                              const Eigen::VectorXd& r) override {
-    if (has_previous_) {
-      const Eigen::VectorXd dr = r - r_previous_;
-      const double dr2 = dr.squaredNorm();
-      // A repeated residual gives no new information: keep the factor.
-      if (dr2 > 0.0) omega_ = -omega_ * r_previous_.dot(dr) / dr2;
-    }
-    r_previous_ = r;
-    has_previous_ = true;
+    update_factor(r);
     return x + omega_ * r;
+  }
+
+  void on_converged(const Eigen::VectorXd&, const Eigen::VectorXd&,
+                    const Eigen::VectorXd& r) override {
+    update_factor(r);
   }
 
   void save_own_state(State& state) const override { state.set("omega", omega_); }
@@ -42,6 +44,17 @@ class Aitken : public CoupledSolver {
   }
 
  private:
+  void update_factor(const Eigen::VectorXd& r) {
+    if (has_previous_) {
+      const Eigen::VectorXd dr = r - r_previous_;
+      const double dr2 = dr.squaredNorm();
+      // A repeated residual gives no new information: keep the factor.
+      if (dr2 > 0.0) omega_ = -omega_ * r_previous_.dot(dr) / dr2;
+    }
+    r_previous_ = r;
+    has_previous_ = true;
+  }
+
   double omega_max_;
   double omega_ = omega_max_;
   Eigen::VectorXd r_previous_;

@@ -24,9 +24,13 @@ const Algorithm kAlgorithms[] = {
     {"iqni_ls_q0", "type: iqni, omega: 0.05, model: {type: ls, q: 0}", 1227},
     {"iqni_mv", "type: iqni, omega: 0.05, model: {type: mv}", 418},
     {"iqni_mvmf", "type: iqni, omega: 0.05, model: {type: mvmf, q: 100}", 418},
+    // 3.58 per step, as CoCoNuT's ibqn with the same settings: the structure gets the block
+    // update of the loads (398 while it got F(x) itself).
     {"ibqn", "type: ibqn, omega: 0.05, model_f: {type: ls, q: 10}, model_s: {type: ls, q: 10}",
-     398},
-    {"aitken", "type: aitken, omega_max: 0.05", 3894},
+     358},
+    // The factor is updated also with the residual that ends a step, as the published method
+    // and CoCoNuT do (3894 while the next step started from the factor before it).
+    {"aitken", "type: aitken, omega_max: 0.05", 3818},
 };
 
 class CouplingAlgorithms : public ::testing::TestWithParam<Algorithm> {};

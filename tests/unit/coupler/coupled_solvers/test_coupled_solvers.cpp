@@ -72,6 +72,65 @@ TEST(CoupledSolvers, RelaxationAndAitkenConvergeWhereGaussSeidelDiverges) {
   solve_one_step(*make("type: aitken\nomega_max: 0.3"), again);
 }
 
+// Aitken's residuals over two steps against the method written out as published (Kuttler and
+// Wall 2008, eqs. 43-44, with the reference implementation's handling of steps): in a step,
+// r_0 = G(x_0) - x_0 with G(x) = B (A x + b) and the factor carried over from the previous step,
+// capped at omega_max (omega_max itself in the first step); then x_(k+1) = x_k + omega_k r_k and
+// omega_(k+1) = -omega_k r_k . (r_(k+1) - r_k) / |r_(k+1) - r_k|^2, also for the residual that
+// ends the step. The second step starts from the first's solution (constant predictor) with a
+// changed offset, so its residuals depend on the factor carried over.
+TEST(CoupledSolvers, AitkenFollowsThePublishedMethodAcrossSteps) {
+  const int n = 6;
+  const double omega_max = 1.0;  // above the factors of this problem (~0.3): no cap hides them
+  auto published = [&](Problem& problem, int steps) {
+    std::vector<std::vector<double>> norms(steps);
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+    double omega = omega_max;
+    const auto output = [](const Interface& interface) {
+      return Eigen::VectorXd(interface.values("wall", interface.blocks().front().variable).col(1));
+    };
+    auto g = [&](const Eigen::VectorXd& input) -> Eigen::VectorXd {
+      Interface in = problem.flow->input_interface();
+      in.values("wall", "displacement").col(1) = input;
+      const Interface y = problem.flow->solve(in);
+      return output(problem.structure->solve(y));
+    };
+    for (int step = 1; step <= steps; ++step) {
+      problem.flow->initialize_step(step, 0.1 * step);
+      problem.structure->initialize_step(step, 0.1 * step);
+      Eigen::VectorXd r = g(x) - x;
+      omega = std::copysign(std::min(std::abs(omega), omega_max), omega);
+      norms[step - 1].push_back(r.norm());
+      while (r.norm() > 1e-10 && norms[step - 1].size() < 100) {
+        x += omega * r;
+        const Eigen::VectorXd next = g(x) - x;
+        omega = -omega * r.dot(next - r) / (next - r).squaredNorm();
+        r = next;
+        norms[step - 1].push_back(r.norm());
+      }
+    }
+    return norms;
+  };
+  Problem problem(n, -3.0, -1.5);
+  problem.flow->offset_variation = 0.3;
+  // The coupled solver first: it starts from the structure's initial output, x = 0.
+  auto coupled = make("type: aitken\nomega_max: 1.0");
+  coupled->initialize(*problem.flow, *problem.structure);
+  std::vector<StepRecord> records;
+  for (int step = 1; step <= 2; ++step) records.push_back(coupled->solve_step(step, 0.1 * step));
+  const auto expected = published(problem, 2);
+  for (int step = 1; step <= 2; ++step) {
+    const StepRecord& record = records[step - 1];
+    const auto& reference = expected[step - 1];
+    ASSERT_EQ(record.residual_norms.size(), reference.size())
+        << "step " << step << ": " << ::testing::PrintToString(record.residual_norms) << " against "
+        << ::testing::PrintToString(reference);
+    for (std::size_t k = 0; k < reference.size(); ++k)
+      EXPECT_NEAR(record.residual_norms[k], reference[k], 1e-9 * reference.front())
+          << "step " << step << ", iteration " << k + 1;
+  }
+}
+
 TEST(CoupledSolvers, GaussSeidelDivergenceIsDetectedWithAdvice) {
   Problem problem(6, -3.0, -1.5);
   auto coupled = make("type: gauss_seidel");
