@@ -12,6 +12,8 @@ ColumnFilter ColumnFilter::read(const Settings& s) {
   f.min_significant = s.get_in_range("min_significant", f.min_significant, Range::non_negative());
   f.min_significant_relative = s.get_in_range("min_significant_relative",
                                               f.min_significant_relative, Range::closed(0.0, 1.0));
+  const std::string order = s.get_choice("filter_order", "newest", {"newest", "smallest"});
+  f.order = order == "smallest" ? Order::kSmallest : Order::kNewest;
   return f;
 }
 
@@ -40,17 +42,33 @@ bool SecantColumns::significant(Eigen::Index i) const {
          r_ii >= filter_.min_significant_relative * norms_[std::size_t(i)];
 }
 
-void SecantColumns::filter() {
-  // Newest first: removing a column changes only the R_ii of the older ones.
-  for (Eigen::Index i = 0; i < qr_.columns();) {
-    if (significant(i)) {
-      ++i;
-      continue;
+Eigen::Index SecantColumns::next_to_drop() const {
+  Eigen::Index chosen = -1;
+  double smallest = 0.0;
+  for (Eigen::Index i = 0; i < qr_.columns(); ++i) {
+    if (significant(i)) continue;
+    // Newest first: removing a column changes only the R_ii of the older ones.
+    if (filter_.order == ColumnFilter::Order::kNewest) return i;
+    // Smallest first, scaled as the criterion that fails (the relative one in its own norm).
+    const double size = filter_.min_significant_relative > 0.0
+                            ? qr_.diagonal(i) / norms_[std::size_t(i)]
+                            : qr_.diagonal(i);
+    if (chosen < 0 || size < smallest) {
+      chosen = i;
+      smallest = size;
     }
-    qr_.remove(i);
-    columns_.erase(columns_.begin() + i);
-    norms_.erase(norms_.begin() + i);
   }
+  return chosen;
+}
+
+void SecantColumns::drop(Eigen::Index i) {
+  qr_.remove(i);
+  columns_.erase(columns_.begin() + i);
+  norms_.erase(norms_.begin() + i);
+}
+
+void SecantColumns::filter() {
+  for (Eigen::Index i = next_to_drop(); i >= 0; i = next_to_drop()) drop(i);
 }
 
 void SecantColumns::refactorize() {

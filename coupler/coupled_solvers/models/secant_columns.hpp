@@ -6,7 +6,10 @@
 // Filtering: a column whose |R_ii| (the part not explained by the newer columns) is below
 // `min_significant` (absolute, CoCoNuT's criterion) or below `min_significant_relative` times
 // its own norm (preCICE's QR3) carries no new information: it is removed for good, so older,
-// nearly dependent columns make way for newer ones.
+// nearly dependent columns make way for newer ones. `filter_order` says which insignificant
+// column goes first: `newest` (the default: the first one scanning from the newest, whose
+// removal changes only the older ones' R_ii) or `smallest` (the one with the smallest R_ii, as
+// CoCoNuT does; then the QR is updated and the scan repeated).
 #include <Eigen/Core>
 #include <deque>
 #include <string>
@@ -21,9 +24,12 @@ namespace cocopp {
 class Settings;
 
 struct ColumnFilter {
+  enum class Order { kNewest, kSmallest };
   double min_significant = 1e-12;
   double min_significant_relative = 0.0;
-  /// Reads `min_significant` and `min_significant_relative` from a model's settings.
+  Order order = Order::kNewest;
+  /// Reads `min_significant`, `min_significant_relative` and `filter_order` from a model's
+  /// settings.
   static ColumnFilter read(const Settings& settings);
 };
 
@@ -69,6 +75,9 @@ class SecantColumns {
 
  private:
   bool significant(Eigen::Index i) const;
+  /// The insignificant column to drop next under the filter's order, or -1 if there is none.
+  Eigen::Index next_to_drop() const;
+  void drop(Eigen::Index i);
   void filter();
   void refactorize();
   template <class Member>

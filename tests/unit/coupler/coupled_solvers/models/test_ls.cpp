@@ -83,6 +83,27 @@ TEST(LeastSquares, DependentColumnsAreFilteredKeepingTheNewest) {
   EXPECT_NEAR(model->predict(vec({1, 0, 0}))(0), 4.0, 1e-14);
 }
 
+// filter_order: with columns (newest first) e1, c1 = (1, 0.05, 0), c2 = (1, 0.5, 0.01) and
+// min_significant 0.1, both older columns are insignificant (R_11 = 0.05, R_22 = 0.01).
+// `newest` drops c1 first, after which c2's part not explained by e1 (0.5) is significant;
+// `smallest` drops c2 first, which leaves c1 as insignificant as before.
+TEST(LeastSquares, FilterOrderChoosesWhichInsignificantColumnGoesFirst) {
+  auto columns_after = [](const std::string& order) {
+    auto model = make("type: ls\nmin_significant: 0.1\nfilter_order: " + order);
+    model->initialize_step();
+    Eigen::VectorXd r = vec({0, 0, 0});
+    model->add(r, r);
+    for (const Eigen::VectorXd& column : {vec({1, 0.5, 0.01}), vec({1, 0.05, 0}), vec({1, 0, 0})}) {
+      r += column;
+      model->add(r, r);
+    }
+    return model->columns();
+  };
+  EXPECT_EQ(columns_after("newest"), 2);
+  EXPECT_EQ(columns_after("smallest"), 1);
+  EXPECT_THROW(make("type: ls\nfilter_order: oldest"), CaseError);
+}
+
 TEST(LeastSquares, ReusesQPreviousSteps) {
   auto model = make("type: ls\nq: 1");
   auto add_step = [&](double scale) {
