@@ -308,6 +308,8 @@ coupled_solver:
   model:
     type: {p['coupling']['model']}                      # ls: IQN-ILS (the paper's); mvmf: IQN-MVJ
     q: {p['coupling']['reuse_steps']}                         # earlier steps whose secant information is reused
+    min_significant: {p['coupling']['min_significant']:g}       # filter of nearly dependent secant columns:
+    min_significant_relative: {p['coupling']['min_significant_relative']:g}      #   absolute and relative thresholds
   predictor:
     type: linear
   convergence_criterion:
