@@ -23,11 +23,12 @@ import argparse
 import json
 import os
 import pathlib
-import re
 import shutil
 import subprocess
 
 import numpy as np
+
+from wire_results import dat_block
 
 HERE = pathlib.Path(__file__).resolve().parent
 
@@ -44,18 +45,11 @@ def scaled_loads(text, factor):
 
 
 def radial_displacements(dat_file):
-    """The last NODE PRINT of the surface node set: node -> u_x (the radius in CAX)."""
-    lines = dat_file.read_text().splitlines()
-    starts = [i for i, l in enumerate(lines) if re.match(r"\s*displacements \(vx,vy,vz\)", l)]
-    if not starts:
+    """The last NODE PRINT of the surface node set: u_x (the radius in CAX) of each node."""
+    rows = dat_block(dat_file, "displacements")
+    if not rows:
         raise SystemExit(f"wire_response.py: no displacements printed in {dat_file}")
-    values = {}
-    for line in lines[starts[-1] + 2:]:
-        parts = line.split()
-        if len(parts) != 4:
-            break
-        values[int(parts[0])] = float(parts[1])
-    return np.array([values[k] for k in sorted(values)])
+    return np.array([row[1] for row in rows])
 
 
 def solve(structure, work, factor, ccx):
