@@ -180,13 +180,15 @@ class Run {
   }
 
   void stop_solvers(RunOutcome& outcome) {
-    for (auto& solver : case_.solvers) {
+    auto stop = [&](auto finalize) {
       try {
-        solver->finalize();
+        finalize();
       } catch (const std::exception& e) {
         if (ran_all_steps(outcome.status)) outcome = stopped(RunStatus::kSolverFailed, e.what());
       }
-    }
+    };
+    for (auto& solver : case_.solvers) stop([&] { solver->finalize(); });
+    stop([&] { case_.coupled_solver->finalize(); });  // its own solvers (a surrogate's)
   }
 
   std::filesystem::path results_path(const std::string& extension) const {
@@ -196,7 +198,8 @@ class Run {
   void finish(const RunOutcome& outcome) {
     const double wall = std::chrono::duration<double>(Clock::now() - start_).count();
     const auto& solver_times = case_.coupled_solver->solver_time_total();
-    const double coupler = wall - solver_times[0] - solver_times[1];
+    const double own_solvers = case_.coupled_solver->own_solvers_time_total();
+    const double coupler = wall - solver_times[0] - solver_times[1] - own_solvers;
     if (writer_) writer_->close(to_string(outcome.status), outcome.message);
     summary_.finish(outcome, wall, {solver_times[0], solver_times[1]}, coupler);
     summary_.write(results_path(".summary.json"));
@@ -209,6 +212,8 @@ class Run {
     };
     for (std::size_t i = 0; i < 2; ++i)
       line("solver " + case_.solvers[i]->name(), fmt::format("{:.3f} s", solver_times[i]));
+    if (own_solvers > 0.0)
+      line("surrogate", fmt::format("{:.3f} s (its solvers and coupling)", own_solvers));
     line("coupler", fmt::format("{:.3f} s ({:.1f} us per coupling iteration inside the steps)",
                                 coupler, iterations_ ? 1e6 * algorithm_time_ / iterations_ : 0.0));
     if (steps > 0)

@@ -118,8 +118,17 @@ const Interface& CoupledSolver::timed_solve(int index, const Interface& input) {
 }
 
 StepRecord CoupledSolver::solve_step(int step, double time) {
-  const auto start = Clock::now();
+  StepRecord record = iterate_step(step, time);
+  commit_step(record);
+  return record;
+}
+
+StepRecord CoupledSolver::iterate_step(int step, double time) {
+  step_start_ = Clock::now();
+  step_ = step;
+  time_ = time;
   solver_time_step_ = {0.0, 0.0};
+  own_solvers_time_step_ = 0.0;
   StepRecord record;
   record.step = step;
   record.time = time;
@@ -127,9 +136,9 @@ StepRecord CoupledSolver::solve_step(int step, double time) {
 
   // The previous step's converged input: what the solvers last accepted.
   Eigen::VectorXd accepted = x_.data();
-  Eigen::VectorXd x = predictor_->predict();
   criterion_->initialize_step();
   on_step_start();
+  Eigen::VectorXd x = first_input(predictor_->predict());
   bool tolerance_met = false;
   std::vector<std::string> notes;
   for (int iteration = 1;; ++iteration) {
@@ -154,17 +163,25 @@ StepRecord CoupledSolver::solve_step(int step, double time) {
   }
   for (auto& note : take_notes()) notes.push_back(std::move(note));
   record.warnings = count_repeats(notes);
+  record.converged = tolerance_met;
   x_.set_data(x);
-  predictor_->update(x);
+  return record;
+}
+
+void CoupledSolver::synchronize(const Eigen::VectorXd& x) {
+  evaluate(x, step_, 0);
+}
+
+void CoupledSolver::commit_step(StepRecord& record) {
+  predictor_->update(x_.data());
   on_step_end();
   for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->finalize_step(); });
   for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->output_step(); });
 
-  record.converged = tolerance_met;
-  record.wall_time = seconds_since(start);
+  record.wall_time = seconds_since(step_start_);
   record.solver_times = {solver_time_step_[0], solver_time_step_[1]};
-  record.coupler_time = record.wall_time - solver_time_step_[0] - solver_time_step_[1];
-  return record;
+  record.coupler_time =
+      record.wall_time - solver_time_step_[0] - solver_time_step_[1] - own_solvers_time_step_;
 }
 
 Eigen::VectorXd CoupledSolver::evaluate(const Eigen::VectorXd& x, int step, int iteration) {

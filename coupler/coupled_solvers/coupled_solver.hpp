@@ -7,6 +7,7 @@
 // only says how the next x follows from x, x~ and r (`next_input`).
 #include <Eigen/Core>
 #include <array>
+#include <chrono>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -19,6 +20,8 @@
 #include "solver_wrappers/solver_wrapper.hpp"
 
 namespace cocopp {
+
+class Model;
 
 /// The coupling diverged (residual growth or non-finite data) in a step and iteration; the
 /// message says where and what to change.
@@ -39,8 +42,22 @@ class CoupledSolver {
 
   /// Start both solvers and check that their interfaces fit together.
   void initialize(SolverWrapper& first, SolverWrapper& second);
+  /// Create what the coupled solver itself runs besides the case's two solvers (iqnism's
+  /// surrogate solvers), from its settings; called once, while the case is read.
+  virtual void create_own_solvers(const RunSettings& /*run*/) {}
+  /// Stop what create_own_solvers() started; called once, at the end of a run.
+  virtual void finalize() {}
   /// Advance, iterate to convergence, commit and write one time step.
   StepRecord solve_step(int step, double time);
+  /// The two halves of solve_step(), for a coupled solver run inside another (a surrogate):
+  /// iterate one step to convergence, then commit it. Between them, synchronize(x) makes x the
+  /// step's solution: one more pass of both solvers at x, so that they commit x's state.
+  StepRecord iterate_step(int step, double time);
+  void synchronize(const Eigen::VectorXd& x);
+  void commit_step(StepRecord& record);
+  /// The secant model of the coupled problem's inverse Jacobian, dx~ for a residual change dr,
+  /// in the interface's own units (iqni without scaling); nullptr where there is none.
+  virtual Model* residual_model() { return nullptr; }
   /// The interfaces x (displacement) and y (loads): during a step the values of the current
   /// coupling iteration (y as given to the second solver), after it the converged values of
   /// the step.
@@ -56,6 +73,9 @@ class CoupledSolver {
   void load_state(const State& state);
   /// Wall time spent in each solver since initialize(), in seconds.
   const std::array<double, 2>& solver_time_total() const { return solver_time_total_; }
+  /// Wall time spent in the coupled solver's own solvers (iqnism's surrogate, its coupling
+  /// included) since initialize(), in seconds: not the coupler's time.
+  double own_solvers_time_total() const { return own_solvers_time_total_; }
 
  protected:
   /// The next x of the iteration, given the current x, the output x~ of the second solver and
@@ -84,10 +104,21 @@ class CoupledSolver {
   /// The type's own part of the state.
   virtual void save_own_state(State&) const {}
   virtual void load_own_state(const State&) {}
+  /// The step's first x, from the predictor's: the predictor's (iqnism may use its surrogate).
+  virtual Eigen::VectorXd first_input(const Eigen::VectorXd& predicted) { return predicted; }
   /// The type's own settings for describe(), e.g. "omega 0.05".
   virtual std::string describe_settings() const { return ""; }
   /// What to suggest when this method diverges.
   virtual std::string divergence_advice() const;
+
+  /// Count `seconds` as time of the coupled solver's own solvers, not of the coupler.
+  void add_own_solvers_time(double seconds) {
+    own_solvers_time_step_ += seconds;
+    own_solvers_time_total_ += seconds;
+  }
+  /// The step being solved (iterate_step's arguments).
+  int current_step() const { return step_; }
+  double current_time() const { return time_; }
 
   std::string type_;
 
@@ -117,8 +148,12 @@ class CoupledSolver {
   double backtracking_factor_;
   std::array<SolverWrapper*, 2> solvers_{};
   Interface x_, y_;  ///< layouts of the first solver's input and output
+  std::chrono::steady_clock::time_point step_start_;
+  int step_ = 0;
+  double time_ = 0.0;
   std::array<double, 2> solver_time_step_{};
   std::array<double, 2> solver_time_total_{};
+  double own_solvers_time_step_ = 0.0, own_solvers_time_total_ = 0.0;
 };
 
 using CoupledSolverRegistry = Registry<CoupledSolver>;

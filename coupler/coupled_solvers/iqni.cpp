@@ -30,6 +30,10 @@ class Iqni : public CoupledSolver {
                            "' approximates a Jacobian, not a least-squares fit of residuals)");
   }
 
+ public:
+  // With scaling, the model works in weighted units: no use to another coupled solver.
+  Model* residual_model() override { return scaling_.enabled() ? nullptr : model_.get(); }
+
  protected:
   void on_initialized() override { scaling_.bind({&x()}); }
   void on_step_start() override { model_->initialize_step(); }

@@ -50,7 +50,7 @@ target_compile_definitions(${COCOPP_LAST_TEST} PRIVATE
 
 # coupler
 cocopp_unit_test(coupler/coupled_solvers
-  SOURCES test_coupled_solvers.cpp test_ibqn.cpp test_scaling.cpp test_state.cpp
+  SOURCES test_coupled_solvers.cpp test_ibqn.cpp test_iqnism.cpp test_scaling.cpp test_state.cpp
   LIBS cocopp_coupling)
 cocopp_unit_test(coupler/coupled_solvers/models
   SOURCES test_ls.cpp test_multi_vector.cpp test_qr_factorization.cpp LIBS cocopp_coupling)
