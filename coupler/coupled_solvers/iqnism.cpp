@@ -19,8 +19,9 @@
 // (`surrogate.prediction`: its change over the step added to the last solution, or its value).
 //
 // The surrogate's interface is the case's (the same model parts, points and variables), or
-// `surrogate.mapper` (an interpolator, as a mapped solver's) maps between the two, block by
-// block: a surrogate on a coarser mesh.
+// `surrogate.mapper` (an interpolator with transformers, as a mapped solver's; or one mapper
+// each way) maps between the two, block by block: a surrogate on a coarser mesh, or a 1D
+// model standing in for a 3D one.
 #include <fmt/format.h>
 
 #include <chrono>
@@ -47,9 +48,7 @@ class Iqnism : public CoupledSolver {
         prediction_(
             surrogate_settings_.get_choice("prediction", "none", {"none", "change", "value"})),
         synchronize_(surrogate_settings_.get<bool>("synchronize", true)),
-        mapping_(surrogate_settings_.has("mapper")
-                     ? std::optional<Settings>(surrogate_settings_.child("mapper"))
-                     : std::nullopt) {
+        mapping_(surrogate_settings_) {
     if (!model_->fits_residuals())
       s.child("model").fail("type",
                             "iqnism needs a model that fits residuals ('ls'): the "

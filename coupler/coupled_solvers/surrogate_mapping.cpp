@@ -16,9 +16,29 @@ const ModelPart& part_of(const Interface& interface, const std::string& name) {
 
 }  // namespace
 
-SurrogateMapping::SurrogateMapping(std::optional<Settings> mapper) : settings_(std::move(mapper)) {
-  // Read the settings now, while the case is read, so that mistakes show before the solvers start.
-  if (settings_) Mapper check(*settings_);
+SurrogateMapping::SurrogateMapping(const Settings& surrogate) {
+  const bool both = surrogate.has("mapper");
+  const bool to = surrogate.has("mapper_to_surrogate"),
+             from = surrogate.has("mapper_from_surrogate");
+  if (both && (to || from))
+    surrogate.fail(to ? "mapper_to_surrogate" : "mapper_from_surrogate",
+                   "give either 'mapper' (both ways) or 'mapper_to_surrogate' and "
+                   "'mapper_from_surrogate', not both");
+  if (to != from)
+    surrogate.fail(to ? "mapper_to_surrogate" : "mapper_from_surrogate",
+                   std::string("needs its counterpart '") +
+                       (to ? "mapper_from_surrogate" : "mapper_to_surrogate") +
+                       "' (or one 'mapper' for both ways)");
+  if (both) to_settings_ = from_settings_ = surrogate.child("mapper");
+  if (to) {
+    to_settings_ = surrogate.child("mapper_to_surrogate");
+    from_settings_ = surrogate.child("mapper_from_surrogate");
+  }
+  // Read the settings now, while the case is read, so that mistakes show before the solvers
+  // start.
+  if (to_settings_) {
+    Mapper check_to(*to_settings_), check_from(*from_settings_);
+  }
 }
 
 void SurrogateMapping::initialize(const Interface& real, const Interface& surrogate) {
@@ -29,7 +49,7 @@ void SurrogateMapping::initialize(const Interface& real, const Interface& surrog
         fmt::format("the surrogate's interface [{}] does not fit the case's [{}]: {}",
                     surrogate.describe(), real.describe(), why));
   };
-  if (!settings_) {
+  if (!to_settings_) {
     if (!real.same_layout(surrogate))
       throw mismatch(
           "give the surrogate's solvers the same model parts, points and variables, or give "
@@ -47,9 +67,9 @@ void SurrogateMapping::initialize(const Interface& real, const Interface& surrog
     const Coordinates& real_points = part_of(real, real_blocks[i].model_part).coordinates;
     const Coordinates& surrogate_points =
         part_of(surrogate, surrogate_blocks[i].model_part).coordinates;
-    to_surrogate_.push_back(std::make_unique<Mapper>(*settings_));
+    to_surrogate_.push_back(std::make_unique<Mapper>(*to_settings_));
     to_surrogate_.back()->initialize(real_points, surrogate_points);
-    from_surrogate_.push_back(std::make_unique<Mapper>(*settings_));
+    from_surrogate_.push_back(std::make_unique<Mapper>(*from_settings_));
     from_surrogate_.back()->initialize(surrogate_points, real_points);
   }
 }
@@ -69,11 +89,11 @@ Eigen::VectorXd SurrogateMapping::carry(const Interface& from, const Eigen::Vect
 }
 
 Eigen::VectorXd SurrogateMapping::to_surrogate(const Eigen::VectorXd& real) const {
-  return settings_ ? carry(real_, real, surrogate_, to_surrogate_) : real;
+  return to_settings_ ? carry(real_, real, surrogate_, to_surrogate_) : real;
 }
 
 Eigen::VectorXd SurrogateMapping::from_surrogate(const Eigen::VectorXd& surrogate) const {
-  return settings_ ? carry(surrogate_, surrogate, real_, from_surrogate_) : surrogate;
+  return to_settings_ ? carry(surrogate_, surrogate, real_, from_surrogate_) : surrogate;
 }
 
 }  // namespace cocopp

@@ -3,10 +3,13 @@
 // settings like any solver wrapper: here a registered test type that forwards to an affine
 // solver built by the test.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <filesystem>
 #include <map>
 
 #include "coupler/coupled_solvers/coupled_solver.hpp"
+#include "coupler/results/state_file.hpp"
 #include "tests/support/error_message.hpp"
 #include "tests/support/linear_solvers.hpp"
 
@@ -199,4 +202,38 @@ TEST(Iqnism, ANearbySurrogateSavesIterations) {
   std::printf("nearby surrogate: %d iterations in 5 steps, IQN-ILS alone %d\n", total(with),
               total(without));
   EXPECT_LT(total(with), total(without));
+}
+
+// A run split in two through the state file (the model's columns, the surrogate's own state
+// and its last solution) continues as the uninterrupted run.
+TEST(Iqnism, ContinuesFromItsSavedState) {
+  const char* settings = "  prediction: change\n";
+  auto make = [&] { return make_iqnism(settings, 10); };
+  AffineProblem whole("", 6, -3.0, -1.5, 7), whole_surrogate("s_", 6, -2.4, -1.2, 7);
+  auto uninterrupted = make();
+  const std::vector<int> expected = iterations(*uninterrupted, whole, 6);
+  const Eigen::VectorXd expected_x = uninterrupted->x().data();
+
+  const auto file = std::filesystem::temp_directory_path() /
+                    ("cocopp_test_iqnism_" + std::to_string(::getpid()) + ".h5");
+  {
+    AffineProblem first("", 6, -3.0, -1.5, 7), first_surrogate("s_", 6, -2.4, -1.2, 7);
+    auto first_half = make();
+    EXPECT_EQ(iterations(*first_half, first, 3),
+              std::vector<int>(expected.begin(), expected.begin() + 3));
+    SavedState saved;
+    saved.step = 3;
+    first_half->save_state(saved.state);
+    write_state_file(file, saved);
+  }
+  AffineProblem second("", 6, -3.0, -1.5, 7), second_surrogate("s_", 6, -2.4, -1.2, 7);
+  auto second_half = make();
+  second_half->initialize(*second.flow, *second.structure);
+  second_half->load_state(read_state_file(file).state);
+  std::filesystem::remove(file);
+  for (int step = 4; step <= 6; ++step) {
+    const StepRecord record = second_half->solve_step(step, 0.1 * step);
+    EXPECT_EQ(record.iterations, expected[std::size_t(step - 1)]) << "step " << step;
+  }
+  EXPECT_LT((second_half->x().data() - expected_x).norm(), 1e-12 * expected_x.norm());
 }
