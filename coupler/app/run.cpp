@@ -53,9 +53,11 @@ RunDescription describe_run(const Case& c) {
 }
 
 void print_progress(const StepRecord& r, int last_step) {
-  fmt::print("step {:>{}} / {}  t = {:<10.4g} iterations {:>3}  residual {:.3e}{}  {:8.3f} ms\n",
+  const std::string surrogate =
+      r.surrogate_iterations > 0 ? fmt::format("  (surrogate {:>2})", r.surrogate_iterations) : "";
+  fmt::print("step {:>{}} / {}  t = {:<10.4g} iterations {:>3}  residual {:.3e}{}  {:8.3f} ms{}\n",
              r.step, std::to_string(last_step).size(), last_step, r.time, r.iterations,
-             r.residual_norms.back(), r.converged ? " " : "*", 1e3 * r.wall_time);
+             r.residual_norms.back(), r.converged ? " " : "*", 1e3 * r.wall_time, surrogate);
   std::fflush(stdout);
 }
 

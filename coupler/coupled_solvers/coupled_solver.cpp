@@ -129,6 +129,7 @@ StepRecord CoupledSolver::iterate_step(int step, double time) {
   time_ = time;
   solver_time_step_ = {0.0, 0.0};
   own_solvers_time_step_ = 0.0;
+  own_iterations_ = 0;
   StepRecord record;
   record.step = step;
   record.time = time;
@@ -182,6 +183,7 @@ void CoupledSolver::commit_step(StepRecord& record) {
   record.solver_times = {solver_time_step_[0], solver_time_step_[1]};
   record.coupler_time =
       record.wall_time - solver_time_step_[0] - solver_time_step_[1] - own_solvers_time_step_;
+  record.surrogate_iterations = own_iterations_;
 }
 
 Eigen::VectorXd CoupledSolver::evaluate(const Eigen::VectorXd& x, int step, int iteration) {

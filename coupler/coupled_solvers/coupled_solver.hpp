@@ -116,6 +116,9 @@ class CoupledSolver {
     own_solvers_time_step_ += seconds;
     own_solvers_time_total_ += seconds;
   }
+  /// Iterations of the coupled solver's own coupling (iqnism's surrogate) in this step, for
+  /// the step's record.
+  void set_own_iterations(int iterations) { own_iterations_ = iterations; }
   /// The step being solved (iterate_step's arguments).
   int current_step() const { return step_; }
   double current_time() const { return time_; }
@@ -154,6 +157,7 @@ class CoupledSolver {
   std::array<double, 2> solver_time_step_{};
   std::array<double, 2> solver_time_total_{};
   double own_solvers_time_step_ = 0.0, own_solvers_time_total_ = 0.0;
+  int own_iterations_ = 0;
 };
 
 using CoupledSolverRegistry = Registry<CoupledSolver>;

@@ -91,6 +91,7 @@ class Iqnism : public CoupledSolver {
     const auto start = std::chrono::steady_clock::now();
     StepRecord record = surrogate_->iterate_step(current_step(), current_time());
     add_own_solvers_time(seconds_since(start));
+    set_own_iterations(record.iterations);
     if (!record.converged)
       notes_.push_back(fmt::format("the surrogate stopped at its iteration limit ({} iterations)",
                                    record.iterations));

@@ -74,6 +74,7 @@ void RunSummary::add_step(const StepRecord& record) {
   check_solver_times(record.solver_times, ("step " + std::to_string(record.step)).c_str());
   steps_.push_back(record.step);
   iterations_.push_back(record.iterations);
+  if (record.surrogate_iterations > 0) surrogate_iterations_.push_back(record.surrogate_iterations);
   residuals_.push_back(record.residual_norms);
   if (!record.converged) unconverged_steps_.push_back(record.step);
   for (const auto& warning : record.warnings)
@@ -140,6 +141,7 @@ json RunSummary::to_json() const {
   out["last_step"] = steps_.empty() ? json(nullptr) : json(steps_.back());
   out["iterations_per_step"] = iterations_;
   out["average_iterations"] = ratio(static_cast<double>(total_iterations), steps);
+  if (!surrogate_iterations_.empty()) out["surrogate_iterations_per_step"] = surrogate_iterations_;
   out["unconverged_steps"] = unconverged_steps_;
   out["warnings"] = warnings_;
   out["residual_history"] = residuals_;

@@ -49,6 +49,7 @@ class RunSummary {
   RunDescription run_;
   std::vector<int> steps_;
   std::vector<int> iterations_;
+  std::vector<int> surrogate_iterations_;  ///< iqnism only: its surrogate's, per step
   std::vector<std::vector<double>> residuals_;
   std::vector<int> unconverged_steps_;
   std::vector<std::string> warnings_;  ///< "step 3: ...", from StepRecord::warnings

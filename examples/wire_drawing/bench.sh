@@ -9,6 +9,9 @@ case_dir="$here/results/bench_case"
 rm -rf "$case_dir" "$here/results/bench"
 /usr/bin/python3 "$here/make_case.py" --output "$case_dir" "$@"
 export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
-(cd "$case_dir/fluid" && blockMesh > log.blockMesh 2>&1) ||
-  { echo "bench.sh: blockMesh failed, see $case_dir/fluid/log.blockMesh" >&2; exit 1; }
+for film in "$case_dir/fluid" "$case_dir/surrogate/fluid"; do  # the surrogate's: iqnism
+  [ -d "$film" ] || continue
+  (cd "$film" && blockMesh > log.blockMesh 2>&1) ||
+    { echo "bench.sh: blockMesh failed, see $film/log.blockMesh" >&2; exit 1; }
+done
 exec "$root/build/bin/cocopp" bench "$here/bench.yaml"

@@ -9,8 +9,10 @@ DIR/structure/wire.inp, the wire as an axisymmetric CalculiX deck (CAX8, elastop
 Swift hardening, NLGEOM, quasi-static: pulled at the drawing speed at its exit end, the back
 force on its entry end). --refine doubles the cells and elements in each direction; --set
 changes one parameter, e.g. --set die.reduction=0 (the die held for the whole run) or
---set lubricant.viscosity=122.5.
+--set lubricant.viscosity=122.5. With --set coupling.type=iqnism it also writes DIR/surrogate,
+the same film and wire on the coarser meshes of the `surrogate` parameters (IQN-ILSM).
 """
+import copy
 import argparse
 import math
 import pathlib
@@ -19,7 +21,7 @@ import sys
 import yaml
 
 HERE = pathlib.Path(__file__).resolve().parent
-TEXT_PARAMETERS = {"wire_element", "model"}  # every other parameter is a number
+TEXT_PARAMETERS = {"wire_element", "model", "type"}  # every other parameter is a number
 
 
 def load_parameters(path, changes):
@@ -295,22 +297,28 @@ def wire_deck(p, refine):
 
 def case_file(p):
     """The coupled case: the film (openfoam) and the wire (calculix behind a mapped wrapper)."""
-    time = p["time"]
+    time, coupling = p["time"], p["coupling"]
+    if coupling["type"] not in ("iqni", "iqnism"):
+        sys.exit(f"make_case.py: coupling.type: '{coupling['type']}' is not iqni or iqnism")
+    if coupling["type"] == "iqnism" and (coupling["mixing"] != 1.0 or coupling["model"] != "ls"):
+        sys.exit("make_case.py: coupling.type iqnism takes model ls and mixing 1")
+    mixing = ("" if coupling["type"] == "iqnism" else
+              f"  mixing: {coupling['mixing']:g}                      "
+              "# 1: IQN-ILS; < 1: the unexplained residual relaxed (ls only)\n")
     return f"""# The dry wire drawing case (docs/wire-drawing.md), written by make_case.py.
 #   cocopp run case.yaml
 settings:
   delta_t: {time['delta_t']:.17g}
   number_of_timesteps: {time['steps']}
 coupled_solver:
-  type: iqni                      # interface quasi-Newton, as the paper
-  omega: {p['coupling']['omega']:g}                     # relaxation of a step's first update
-  mixing: {p['coupling']['mixing']:g}                      # 1: IQN-ILS; < 1: the unexplained residual relaxed (ls only)
-  model:
-    type: {p['coupling']['model']}                      # ls: IQN-ILS (the paper's); mvmf: IQN-MVJ
-    q: {p['coupling']['reuse_steps']}                         # earlier steps whose secant information is reused
-    min_significant: {p['coupling']['min_significant']:g}       # filter of nearly dependent secant columns:
-    min_significant_relative: {p['coupling']['min_significant_relative']:g}      #   absolute and relative thresholds
-  predictor:
+  type: {coupling['type']}                      # interface quasi-Newton, as the paper
+  omega: {coupling['omega']:g}                     # relaxation of a step's first update
+{mixing}  model:
+    type: {coupling['model']}                      # ls: IQN-ILS (the paper's); mvmf: IQN-MVJ
+    q: {coupling['reuse_steps']}                         # earlier steps whose secant information is reused
+    min_significant: {coupling['min_significant']:g}       # filter of nearly dependent secant columns:
+    min_significant_relative: {coupling['min_significant_relative']:g}      #   absolute and relative thresholds
+{surrogate_block(p) if coupling['type'] == 'iqnism' else ''}  predictor:
     type: linear
   convergence_criterion:
     type: or
@@ -318,21 +326,52 @@ coupled_solver:
       - type: absolute_norm       # the paper's 0.01 um on the 2-norm of the displacement residual
         tolerance: 1.0e-8
       - type: iteration_limit
-        maximum: {p['coupling']['max_iterations']}
+        maximum: {coupling['max_iterations']}
 solver_wrappers:
-  - type: openfoam                # F: the film's wire wall displacement -> its loads
-    name: film
-    working_directory: fluid
+{solver_wrappers(p, "")}"""
+
+
+def surrogate_block(p):
+    """iqnism's surrogate: the case on the coarser meshes in surrogate/, its own iqni."""
+    s = p["surrogate"]
+    wrappers = "\n".join("    " + line if line else line
+                         for line in solver_wrappers(p, "surrogate/").split("\n"))
+    return f"""  surrogate:                      # the case on coarser meshes (surrogate/), solved first
+    synchronize: true             # every step; its Jacobian guides this coupling
+    coupled_solver:
+      type: iqni
+      omega: {p['coupling']['omega']:g}
+      model: {{type: {s['model']}}}
+      predictor: {{type: linear}}
+      convergence_criterion:
+        type: or
+        criteria:
+          - {{type: absolute_norm, tolerance: {s['tolerance']:g}}}
+          - {{type: iteration_limit, maximum: {s['max_iterations']}}}
+    mapper:                       # the film's wall points (wedge) on both meshes, along the axis
+      type: linear
+      directions: [x, z]
+    solver_wrappers:
+{wrappers.rstrip()}
+"""
+
+
+def solver_wrappers(p, prefix):
+    """The film and the wire, in the directories under `prefix`."""
+    name = "surrogate_" if prefix else ""
+    return f"""  - type: openfoam                # F: the film's wire wall displacement -> its loads
+    name: {name}film
+    working_directory: {prefix}fluid
     boundary_names: [wire]
     timeout: 600
   - type: mapped                  # S: the loads -> the wire's surface displacement
-    name: wire
+    name: {name}wire
     coordinates: current          # a sliding interface: map on the current positions ...
     rebuild: time_step            # ... every time step
     frame_velocity: [0, {p['wire']['drawing_speed']:.17g}, 0]       # the wire's frame moves with its exit end
     solver_wrapper:
       type: calculix
-      working_directory: structure
+      working_directory: {prefix}structure
       input_file: wire.inp
       interface_surface: SURFACE
       interface_node_set: SURFACEN
@@ -356,6 +395,27 @@ solver_wrappers:
 """
 
 
+def surrogate_parameters(p):
+    """The parameters of the surrogate: the case's, on the surrogate's meshes."""
+    coarse = copy.deepcopy(p)
+    for key in ("film_axial_cells", "film_radial_cells", "wire_radial_elements",
+                "wire_axial_elements"):
+        coarse["mesh"][key] = p["surrogate"][key]
+    return coarse
+
+
+def write_solvers(p, refine, output):
+    """fluid/ and structure/ under output; returns the film."""
+    film = Film(p, refine)
+    for name, text in fluid_files(p, film).items():
+        path = output / "fluid" / name
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(text)
+    (output / "structure").mkdir(parents=True, exist_ok=True)
+    (output / "structure" / "wire.inp").write_text(wire_deck(p, refine))
+    return film
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -367,14 +427,10 @@ def main():
                         help="change one parameter, e.g. --set die.reduction=0")
     args = parser.parse_args()
     p = load_parameters(args.parameters, args.set)
-    film = Film(p, args.refine)
     output = pathlib.Path(args.output)
-    for name, text in fluid_files(p, film).items():
-        path = output / "fluid" / name
-        path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(text)
-    (output / "structure").mkdir(parents=True, exist_ok=True)
-    (output / "structure" / "wire.inp").write_text(wire_deck(p, args.refine))
+    film = write_solvers(p, args.refine, output)
+    if p["coupling"]["type"] == "iqnism":
+        write_solvers(surrogate_parameters(p), False, output / "surrogate")
     (output / "case.yaml").write_text(case_file(p))
     # What the case was made from, for plot.py and checks.py.
     (output / "made_with.yaml").write_text(yaml.safe_dump({"parameters": p,

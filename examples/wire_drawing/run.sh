@@ -27,8 +27,11 @@ rm -rf "$case_dir"
 /usr/bin/python3 "$here/make_case.py" --output "$case_dir" "${args[@]}"
 # OpenFOAM's utilities need WM_PROJECT_DIR (Debian's package installs it here).
 export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
-(cd "$case_dir/fluid" && blockMesh > log.blockMesh 2>&1) ||
-  { echo "run.sh: blockMesh failed, see $case_dir/fluid/log.blockMesh" >&2; exit 1; }
+for film in "$case_dir/fluid" "$case_dir/surrogate/fluid"; do  # the surrogate's: iqnism
+  [ -d "$film" ] || continue
+  (cd "$film" && blockMesh > log.blockMesh 2>&1) ||
+    { echo "run.sh: blockMesh failed, see $film/log.blockMesh" >&2; exit 1; }
+done
 if [ -n "$steps" ]; then
   sed -i "s/^  number_of_timesteps: .*/  number_of_timesteps: $steps/" "$case_dir/case.yaml"
 fi

@@ -1,7 +1,8 @@
 #pragma once
 // The wire drawing example's case written for a test: examples/wire_drawing/make_case.py into
 // `directory` with more of its arguments (e.g. "--set die.reduction=0"), and the film meshed
-// (blockMesh, which needs OpenFOAM) unless `mesh_film` is false.
+// (blockMesh, which needs OpenFOAM) unless `mesh_film` is false, and the surrogate's film too
+// where the case has one (coupling.type iqnism).
 #include <filesystem>
 #include <string>
 
@@ -16,7 +17,10 @@ inline void write_wire_drawing_case(const std::filesystem::path& directory,
                                     const std::string& arguments = "", bool mesh_film = true) {
   run_in(directory, "/usr/bin/python3 " + (kWireDrawingExample / "make_case.py").string() +
                         " --output . " + arguments);
-  if (mesh_film) run_in(directory / "fluid", "blockMesh");
+  if (!mesh_film) return;
+  run_in(directory / "fluid", "blockMesh");
+  if (std::filesystem::exists(directory / "surrogate" / "fluid"))
+    run_in(directory / "surrogate" / "fluid", "blockMesh");
 }
 
 }  // namespace cocopp::testing
