@@ -89,7 +89,16 @@ class Iqnism : public CoupledSolver {
   void on_step_start() override {
     model_->initialize_step();
     const auto start = std::chrono::steady_clock::now();
-    StepRecord record = surrogate_->iterate_step(current_step(), current_time());
+    StepRecord record;
+    try {
+      record = surrogate_->iterate_step(current_step(), current_time());
+    } catch (const DivergenceError& e) {
+      // Say whose coupling it was: the message alone reads like the case's own.
+      throw DivergenceError(e.kind, e.step, e.iteration,
+                            std::string("iqnism's surrogate: ") + e.what() +
+                                " (the surrogate's coupled_solver is set under "
+                                "coupled_solver.surrogate)");
+    }
     add_own_solvers_time(seconds_since(start));
     set_own_iterations(record.iterations);
     if (!record.converged)

@@ -237,3 +237,27 @@ TEST(Iqnism, ContinuesFromItsSavedState) {
   }
   EXPECT_LT((second_half->x().data() - expected_x).norm(), 1e-12 * expected_x.norm());
 }
+
+// A surrogate whose own coupling diverges stops the run with a message that says it was the
+// surrogate's (its filter drops every secant column, which leaves Gauss-Seidel, omega 1, on a
+// problem with eigenvalues below -1).
+TEST(Iqnism, ASurrogateThatDivergesSaysSo) {
+  AffineProblem real("", 4, -3.0, -1.5, 7), surrogate("s_", 4, -3.0, -1.5, 7);
+  const std::string yaml =
+      std::string("type: iqnism\nmodel: {type: ls}\n") + kCriterion +
+      "surrogate:\n  coupled_solver:\n    type: iqni\n    omega: 1\n"
+      "    model: {type: ls, min_significant: 1.0e+300}\n    predictor: {type: constant}\n"
+      "    divergence: {factor: 10}\n"
+      "    convergence_criterion: {type: iteration_limit, maximum: 50}\n"
+      "  solver_wrappers:\n"
+      "    - {type: test_solver, solver: s_flow}\n"
+      "    - {type: test_solver, solver: s_structure}\n";
+  auto coupled = CoupledSolverRegistry::instance().create(Settings::load_string(yaml, "case.yaml"));
+  coupled->create_own_solvers(RunSettings{});
+  coupled->initialize(*real.flow, *real.structure);
+  const std::string message =
+      cocopp::testing::error_message<DivergenceError>([&] { coupled->solve_step(1, 0.1); });
+  EXPECT_NE(message.find("iqnism's surrogate: the coupling diverged in time step 1"),
+            std::string::npos)
+      << message;
+}
