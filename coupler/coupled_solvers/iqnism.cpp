@@ -33,10 +33,6 @@
 namespace cocopp {
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 class Iqnism : public CoupledSolver {
  public:
   explicit Iqnism(const Settings& s)
@@ -88,7 +84,7 @@ class Iqnism : public CoupledSolver {
 
   void on_step_start() override {
     model_->initialize_step();
-    const auto start = std::chrono::steady_clock::now();
+    const OwnSolversTime stopwatch{*this};
     StepRecord record;
     try {
       record = surrogate_->iterate_step(current_step(), current_time());
@@ -99,7 +95,6 @@ class Iqnism : public CoupledSolver {
                                 " (the surrogate's coupled_solver is set under "
                                 "coupled_solver.surrogate)");
     }
-    add_own_solvers_time(seconds_since(start));
     set_own_iterations(record.iterations);
     if (!record.converged)
       notes_.push_back(fmt::format("the surrogate stopped at its iteration limit ({} iterations)",
@@ -137,11 +132,21 @@ class Iqnism : public CoupledSolver {
 
   void on_step_end() override {
     model_->finalize_step();
-    const auto start = std::chrono::steady_clock::now();
+    const OwnSolversTime stopwatch{*this};
     if (synchronize_) surrogate_->synchronize(mapping_.to_surrogate(x().data()));
     surrogate_->commit_step(pending_surrogate_record_);
-    add_own_solvers_time(seconds_since(start));
   }
+
+  /// Counts the time of its scope as the surrogate's, also when the scope is left by an
+  /// exception (an interrupted or failed surrogate step is not the coupler's time either).
+  struct OwnSolversTime {
+    Iqnism& owner;
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+    ~OwnSolversTime() {
+      owner.add_own_solvers_time(
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    }
+  };
 
   Model& surrogate_model() { return *surrogate_->residual_model(); }
   /// N_s dr: the surrogate's model's dx~, in the case's interface.
