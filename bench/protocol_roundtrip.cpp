@@ -1,6 +1,8 @@
 // Round-trip latency of the solver protocol: the coupler side sends SOLVE with N doubles and
 // waits for DATA, against a forked child that serves an echo solver through the SDK, exactly
-// as a solver executable would. Measured for the pipe and the file transport.
+// as a solver executable would. Measured for the pipe and the file transport, and, as the
+// floor, a bare ping-pong of the same bytes through two anonymous pipes between the same two
+// kinds of process (blocking reads and writes, no framing), in the same run.
 //
 //   bench_protocol_roundtrip [doubles=300] [round_trips=2000]
 #include <sys/wait.h>
@@ -47,10 +49,62 @@ struct Statistics {
   double median_us, mean_us, p99_us;
 };
 
-Statistics measure(protocol::TransportKind kind, std::size_t doubles, int round_trips) {
+Statistics summarize(std::vector<double> times_us) {
+  std::sort(times_us.begin(), times_us.end());
+  double sum = 0;
+  for (double t : times_us) sum += t;
+  return {times_us[times_us.size() / 2], sum / times_us.size(),
+          times_us[std::min(times_us.size() - 1, times_us.size() * 99 / 100)]};
+}
+
+/// Blocking read or write of exactly `size` bytes; aborts on failure (a benchmark, not a tool).
+template <class Call>
+void exactly(Call call, std::uint8_t* data, std::size_t size) {
+  while (size > 0) {
+    const ssize_t done = call(data, size);
+    if (done <= 0) std::abort();
+    data += done;
+    size -= static_cast<std::size_t>(done);
+  }
+}
+
+/// The floor: `doubles` doubles there and back through two anonymous pipes.
+Statistics bare_ping_pong(std::size_t doubles, int round_trips) {
+  int to_child[2], to_parent[2];
+  if (::pipe(to_child) != 0 || ::pipe(to_parent) != 0) std::abort();
+  const std::size_t bytes = doubles * sizeof(double);
+  std::vector<std::uint8_t> buffer(bytes);
+  const int warm_up = std::max(10, round_trips / 10);
+  const pid_t child = ::fork();
+  if (child == 0) {
+    for (int i = 0; i < warm_up + round_trips; ++i) {
+      exactly([&](std::uint8_t* d, std::size_t n) { return ::read(to_child[0], d, n); },
+              buffer.data(), bytes);
+      exactly([&](std::uint8_t* d, std::size_t n) { return ::write(to_parent[1], d, n); },
+              buffer.data(), bytes);
+    }
+    ::_exit(0);
+  }
+  std::vector<double> times_us;
+  for (int i = 0; i < warm_up + round_trips; ++i) {
+    const auto start = Clock::now();
+    exactly([&](std::uint8_t* d, std::size_t n) { return ::write(to_child[1], d, n); },
+            buffer.data(), bytes);
+    exactly([&](std::uint8_t* d, std::size_t n) { return ::read(to_parent[0], d, n); },
+            buffer.data(), bytes);
+    const double elapsed = std::chrono::duration<double, std::micro>(Clock::now() - start).count();
+    if (i >= warm_up) times_us.push_back(elapsed);
+  }
+  ::waitpid(child, nullptr, 0);
+  for (int fd : {to_child[0], to_child[1], to_parent[0], to_parent[1]}) ::close(fd);
+  return summarize(std::move(times_us));
+}
+
+Statistics measure(protocol::TransportKind kind, std::size_t doubles, int round_trips,
+                   std::chrono::microseconds busy_wait) {
   char pattern[] = "/tmp/cocopp_bench_XXXXXX";
   const std::filesystem::path directory = ::mkdtemp(pattern);
-  auto channel = protocol::create_coupler_channel(kind, directory);
+  auto channel = protocol::create_coupler_channel(kind, directory, busy_wait);
   const pid_t child = ::fork();
   if (child == 0) {
     ::setenv(protocol::kTransportVariable, protocol::transport_name(kind).c_str(), 1);
@@ -82,11 +136,7 @@ Statistics measure(protocol::TransportKind kind, std::size_t doubles, int round_
   channel.reset();
   std::filesystem::remove_all(directory);
 
-  std::sort(times_us.begin(), times_us.end());
-  double sum = 0;
-  for (double t : times_us) sum += t;
-  return {times_us[times_us.size() / 2], sum / times_us.size(),
-          times_us[std::min(times_us.size() - 1, times_us.size() * 99 / 100)]};
+  return summarize(std::move(times_us));
 }
 
 }  // namespace
@@ -102,12 +152,29 @@ int main(int argc, char** argv) {
   const std::size_t doubles = argc > 1 ? std::stoul(argv[1]) : 300;
   const int round_trips = argc > 2 ? std::stoi(argv[2]) : 2000;
   std::printf("SOLVE of %zu doubles + DATA reply, %d round trips each\n", doubles, round_trips);
-  for (auto kind : {protocol::TransportKind::kPipe, protocol::TransportKind::kFile}) {
+  const Statistics floor = bare_ping_pong(doubles, round_trips);
+  std::printf(
+      "bare: median %8.1f us   mean %8.1f us   p99 %8.1f us   (%d round trips, two "
+      "anonymous pipes, no protocol)\n",
+      floor.median_us, floor.mean_us, floor.p99_us, round_trips);
+  struct Mode {
+    protocol::TransportKind kind;
+    std::chrono::microseconds busy_wait;
+    const char* label;
+  };
+  // The process wrapper's default busy wait is 1 ms (`busy_wait` in the case file).
+  const Mode modes[] = {
+      {protocol::TransportKind::kPipe, std::chrono::microseconds(0), "pipe, polling"},
+      {protocol::TransportKind::kPipe, std::chrono::microseconds(1000), "pipe, busy wait 1 ms"},
+      {protocol::TransportKind::kFile, std::chrono::microseconds(0), "file"}};
+  for (const Mode& mode : modes) {
     const int count =
-        kind == protocol::TransportKind::kFile ? std::max(1, round_trips / 10) : round_trips;
-    const Statistics s = measure(kind, doubles, count);
-    std::printf("%-4s: median %8.1f us   mean %8.1f us   p99 %8.1f us   (%d round trips)\n",
-                protocol::transport_name(kind).c_str(), s.median_us, s.mean_us, s.p99_us, count);
+        mode.kind == protocol::TransportKind::kFile ? std::max(1, round_trips / 10) : round_trips;
+    const Statistics s = measure(mode.kind, doubles, count, mode.busy_wait);
+    std::printf(
+        "%-20s: median %8.1f us   mean %8.1f us   p99 %8.1f us   (%d round trips; median %.2f "
+        "x bare)\n",
+        mode.label, s.median_us, s.mean_us, s.p99_us, count, s.median_us / floor.median_us);
   }
   return 0;
 }

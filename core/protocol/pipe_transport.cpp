@@ -40,12 +40,13 @@ PipeTransport::PipeTransport(std::filesystem::path read_path, std::filesystem::p
       owns_fifos_(owns_fifos) {}
 
 std::unique_ptr<PipeTransport> PipeTransport::create_for_coupler(
-    const std::filesystem::path& directory) {
+    const std::filesystem::path& directory, std::chrono::microseconds busy_wait) {
   if (!std::filesystem::is_directory(directory))
     throw TransportError("channel directory " + directory.string() + " does not exist");
   ignore_sigpipe();
   std::unique_ptr<PipeTransport> transport(new PipeTransport(
       directory / kFromSolverFifo, directory / kToSolverFifo, "solver", /*owns_fifos=*/true));
+  transport->busy_wait_ = busy_wait;
   make_fifo(transport->write_path_);
   make_fifo(transport->read_path_);
   transport->open_read_end();
@@ -121,11 +122,15 @@ void PipeTransport::wait_for(int fd, short events, const Deadline& deadline,
 
 void PipeTransport::read_exactly(std::uint8_t* data, std::size_t size, const Deadline& deadline,
                                  const AliveCheck& check) {
+  const auto busy_until = std::chrono::steady_clock::now() + busy_wait_;
   while (size > 0) {
-    // Poll first: before the writer has ever connected, read() would return 0 (not EOF).
-    wait_for(read_fd_, POLLIN, deadline, check, "waiting for a message from");
+    // Poll (and sleep) once the busy wait is over. Before the writer has ever connected,
+    // read() would return 0 (not EOF): poll first then.
+    if (!has_read_ || std::chrono::steady_clock::now() >= busy_until)
+      wait_for(read_fd_, POLLIN, deadline, check, "waiting for a message from");
     const ssize_t got = ::read(read_fd_, data, size);
     if (got > 0) {
+      has_read_ = true;
       data += got;
       size -= static_cast<std::size_t>(got);
     } else if (got == 0) {

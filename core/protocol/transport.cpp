@@ -20,8 +20,9 @@ std::string transport_name(TransportKind kind) {
 }
 
 std::unique_ptr<Transport> create_coupler_channel(TransportKind kind,
-                                                  const std::filesystem::path& directory) {
-  if (kind == TransportKind::kPipe) return PipeTransport::create_for_coupler(directory);
+                                                  const std::filesystem::path& directory,
+                                                  std::chrono::microseconds busy_wait) {
+  if (kind == TransportKind::kPipe) return PipeTransport::create_for_coupler(directory, busy_wait);
   return FileTransport::create_for_coupler(directory);
 }
 

@@ -72,9 +72,11 @@ class Transport {
 
 /// Coupler side, before launching the solver: create the channel in `directory` (the FIFOs,
 /// or nothing but a cleanup of stale message files). The returned transport removes what it
-/// created when it is destroyed.
-std::unique_ptr<Transport> create_coupler_channel(TransportKind kind,
-                                                  const std::filesystem::path& directory);
+/// created when it is destroyed. `busy_wait`: the pipe transport's receive reads this long
+/// without sleeping before it polls (PipeTransport::receive).
+std::unique_ptr<Transport> create_coupler_channel(
+    TransportKind kind, const std::filesystem::path& directory,
+    std::chrono::microseconds busy_wait = std::chrono::microseconds(0));
 
 /// Solver side: open the channel the coupler created in `directory`.
 std::unique_ptr<Transport> open_solver_channel(TransportKind kind,

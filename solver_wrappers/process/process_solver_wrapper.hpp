@@ -110,6 +110,7 @@ class ProcessSolverWrapper : public SolverWrapper {
   protocol::TransportKind transport_kind_ = protocol::TransportKind::kPipe;
   double timeout_ = 600.0;
   double startup_timeout_ = 60.0;
+  std::chrono::microseconds busy_wait_{1000};  ///< of the pipe transport's receive
   std::filesystem::path log_file_;
   std::vector<std::pair<std::string, std::string>> default_environment_;
   // Where in the case file, for check() errors.

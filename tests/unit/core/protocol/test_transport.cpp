@@ -211,3 +211,40 @@ TEST(FileTransportTest, ATruncatedMessageFileIsAProtocolError) {
 
 }  // namespace
 }  // namespace cocopp::protocol
+
+namespace cocopp::protocol {
+namespace {
+
+// The coupler's busy wait (it reads without sleeping for a while before it polls): a reply
+// that comes within it and one that comes long after it both arrive whole and in order.
+TEST(PipeTransportTest, BusyWaitingReceiveGetsRepliesWithinAndAfterTheBusyWait) {
+  TemporaryDirectory directory;
+  auto coupler = create_coupler_channel(TransportKind::kPipe, directory.path(),
+                                        std::chrono::microseconds(200));
+  std::thread solver([&] {
+    auto channel = open_solver_channel(TransportKind::kPipe, directory.path(), 10.0, nullptr);
+    channel->send(encode_data(ramp(3)));                         // at once
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));  // long after the busy wait
+    channel->send(encode_data(ramp(100000)));                    // more than a pipe holds
+  });
+  coupler->connect(10.0, nullptr);
+  EXPECT_EQ(decode_data(coupler->receive(10.0, nullptr)), ramp(3));
+  EXPECT_EQ(decode_data(coupler->receive(10.0, nullptr)), ramp(100000));
+  solver.join();
+}
+
+// A solver that goes away while the coupler busy-waits is reported as such, at once.
+TEST(PipeTransportTest, BusyWaitingReceiveReportsASolverThatClosedThePipe) {
+  TemporaryDirectory directory;
+  auto coupler = create_coupler_channel(TransportKind::kPipe, directory.path(),
+                                        std::chrono::microseconds(100000));
+  auto solver = open_solver_channel(TransportKind::kPipe, directory.path(), 10.0, nullptr);
+  coupler->connect(10.0, nullptr);
+  solver->send(encode_data(ramp(3)), 10.0, nullptr);
+  EXPECT_EQ(decode_data(coupler->receive(10.0, nullptr)), ramp(3));
+  solver.reset();
+  EXPECT_THROW(coupler->receive(5.0, nullptr), PeerClosed);
+}
+
+}  // namespace
+}  // namespace cocopp::protocol
