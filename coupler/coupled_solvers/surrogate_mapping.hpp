@@ -24,7 +24,6 @@ class SurrogateMapping {
   void initialize(const Interface& real, const Interface& surrogate);
   Eigen::VectorXd to_surrogate(const Eigen::VectorXd& real) const;
   Eigen::VectorXd from_surrogate(const Eigen::VectorXd& surrogate) const;
-  bool maps() const { return to_settings_.has_value(); }
 
  private:
   /// `from`'s data in `to`'s layout, block i by mappers[i].
