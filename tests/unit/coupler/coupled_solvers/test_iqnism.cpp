@@ -261,3 +261,16 @@ TEST(Iqnism, ASurrogateThatDivergesSaysSo) {
             std::string::npos)
       << message;
 }
+
+// The mapper keys: one 'mapper' both ways, or both one-way mappers, never a half pair.
+TEST(Iqnism, AOneWayMapperNeedsItsCounterpart) {
+  const std::string message = cocopp::testing::error_message<std::exception>([] {
+    CoupledSolverRegistry::instance().create(Settings::load_string(
+        std::string("type: iqnism\nmodel: {type: ls}\n") + kCriterion +
+            "surrogate:\n  mapper_to_surrogate: {type: linear, directions: [z]}\n",
+        "case.yaml"));
+  });
+  EXPECT_NE(message.find("needs its counterpart 'mapper_from_surrogate'"), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("case.yaml:"), std::string::npos) << message;
+}
