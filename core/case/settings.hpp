@@ -32,6 +32,9 @@ struct Range {
   static Range at_least(double min) { return {min, std::numeric_limits<double>::infinity()}; }
   /// [min, max]
   static Range closed(double min, double max) { return {min, max}; }
+  /// A timeout in seconds: (0, 1e7]. Beyond some 1e9 s the deadline arithmetic of the clocks
+  /// overflows and every wait would fail at once; 1e7 s is 116 days.
+  static Range timeout() { return {0.0, 1e7, true}; }
 
   bool contains(double value) const;
   /// ">= 0", "> 0", "in (0, 2]"

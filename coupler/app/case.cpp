@@ -1,6 +1,10 @@
 #include "coupler/app/case.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
+#include <optional>
+#include <utility>
 
 namespace cocopp {
 
@@ -11,17 +15,23 @@ RunSettings read_run_settings(const Settings& s, const std::filesystem::path& ca
   RunSettings run;
   run.case_directory = case_directory;
   run.delta_t = s.required_in_range("delta_t", Range::positive());
-  run.timestep_start = s.get_int_in_range("timestep_start", 0, 0);
+  // Step numbers up to timestep_start + number_of_timesteps must fit an int: cap both.
+  constexpr int kMostSteps = 1'000'000'000;
+  run.timestep_start = s.get_int_in_range("timestep_start", 0, 0, kMostSteps);
   const bool has_steps = s.has("number_of_timesteps");
   const bool has_end = s.has("end_time");
   if (has_steps == has_end) s.fail("", "give exactly one of 'number_of_timesteps' and 'end_time'");
   if (has_steps) {
-    run.number_of_timesteps = s.get_int_in_range("number_of_timesteps", 1, 1);
+    run.number_of_timesteps = s.get_int_in_range("number_of_timesteps", 1, 1, kMostSteps);
   } else {
     const double start_time = run.timestep_start * run.delta_t;
     const double end_time =
         s.required_in_range("end_time", Range::at_least(start_time + run.delta_t));
     const double steps = (end_time - start_time) / run.delta_t;
+    if (!(steps <= kMostSteps))
+      s.fail("end_time", fmt::format("is {:g} time steps of delta_t after the start: at most {} "
+                                     "are possible",
+                                     steps, kMostSteps));
     // Round to the nearest step; an end time between steps is a mistake worth reporting.
     if (std::abs(steps - std::round(steps)) > 1e-6 * steps)
       s.fail("end_time", "is not a whole number of time steps after the start (" +
@@ -29,6 +39,32 @@ RunSettings read_run_settings(const Settings& s, const std::filesystem::path& ca
     run.number_of_timesteps = static_cast<int>(std::round(steps));
   }
   return run;
+}
+
+/// The working directory a solver wrapper's settings give (a mapped wrapper's: its inner
+/// solver's), resolved against the case directory; and the settings that name it.
+std::optional<std::pair<std::filesystem::path, Settings>> working_directory_of(
+    const Settings& wrapper) {
+  if (wrapper.has("working_directory"))
+    return std::make_pair(
+        // (a trailing "/" for every path, so that "flow" and "flow/" compare equal)
+        (wrapper.base_directory() / wrapper.required<std::string>("working_directory") / "")
+            .lexically_normal(),
+        wrapper);
+  if (wrapper.has("solver_wrapper")) return working_directory_of(wrapper.child("solver_wrapper"));
+  return std::nullopt;
+}
+
+/// Two solvers in one working directory would share its channel (the pipes or message files)
+/// and their logs: a case error, found before anything starts.
+void check_own_working_directories(const std::vector<Settings>& wrappers) {
+  const auto first = working_directory_of(wrappers[0]);
+  const auto second = working_directory_of(wrappers[1]);
+  if (!first || !second || first->first != second->first) return;
+  second->second.fail("working_directory",
+                      "is also the first solver's (" + first->second.where("working_directory") +
+                          "): give each solver its own working directory, which holds its "
+                          "channel to the coupler (pipes or message files) and its log");
 }
 
 }  // namespace
@@ -54,6 +90,7 @@ Case load_case(const std::filesystem::path& file) {
               "needs exactly two solver wrappers (the first takes displacement and gives loads, "
               "the second takes loads and gives displacement), got " +
                   std::to_string(wrappers.size()));
+  check_own_working_directories(wrappers);
   for (const auto& w : wrappers)
     c.solvers.push_back(SolverWrapperRegistry::instance().create(w, c.run));
   if (c.solvers[0]->name() == c.solvers[1]->name())

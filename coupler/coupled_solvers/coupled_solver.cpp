@@ -148,7 +148,8 @@ StepRecord CoupledSolver::iterate_step(int step, double time) {
     const Eigen::VectorXd r = xt - x;
     record.residual_norms.push_back(r.norm());
     record.iterations = iteration;
-    check_divergence(record.residual_norms, step, time);
+    if (iteration == 1) largest_first_residual_ = std::max(largest_first_residual_, r.norm());
+    check_divergence(record.residual_norms, step, time, notes);
     if (!iterates()) {
       x = xt;  // explicit coupling accepts the structure's answer
       tolerance_met = true;
@@ -242,8 +243,8 @@ void CoupledSolver::check_finite(const Interface& data, const SolverWrapper& sol
   }
 }
 
-void CoupledSolver::check_divergence(const std::vector<double>& norms, int step,
-                                     double time) const {
+void CoupledSolver::check_divergence(const std::vector<double>& norms, int step, double time,
+                                     std::vector<std::string>& notes) const {
   const double first = norms.front();
   const double last = norms.back();
   const int iteration = static_cast<int>(norms.size());
@@ -261,8 +262,20 @@ void CoupledSolver::check_divergence(const std::vector<double>& norms, int step,
   if (n == 0 || norms.size() <= n) return;
   for (std::size_t i = norms.size() - n; i < norms.size(); ++i)
     if (!(norms[i] > norms[i - 1])) return;
-  // A stalled iteration creeping up at round-off level is not diverging: ask for a doubling.
+  // A stalled iteration creeping up at round-off level is not diverging: ask for a doubling,
+  // and for a residual above the noise the solvers' own accuracy leaves (a fraction of the
+  // largest first residual of the run: long after a transient, a step's first residual may
+  // itself be near that floor, and its iterations wander there).
   if (!(last > 2.0 * norms[norms.size() - 1 - n])) return;
+  const double floor = kNoiseFloor * largest_first_residual_;
+  if (last <= floor) {
+    notes.push_back(fmt::format(
+        "the residual grew in each of the last {} iterations but stayed below {:.1e}, {:g} of "
+        "the run's largest first residual: the solvers' noise, not a divergence (a stall: "
+        "loosen the tolerance or use an absolute criterion)",
+        n, floor, kNoiseFloor));
+    return;
+  }
   throw DivergenceError(
       DivergenceKind::kGrowth, step, iteration,
       fmt::format("the coupling diverged in time step {} (t = {:g} s): the residual norm grew in "
@@ -276,6 +289,7 @@ void CoupledSolver::save_state(State& state) const {
   Eigen::MatrixXd columns(x_.size(), Eigen::Index(history.size()));
   for (std::size_t i = 0; i < history.size(); ++i) columns.col(Eigen::Index(i)) = history[i];
   state.group("predictor").set("history", std::move(columns));
+  state.set("largest_first_residual", largest_first_residual_);
   save_own_state(state);
 }
 
@@ -290,6 +304,9 @@ void CoupledSolver::load_state(const State& state) {
   for (Eigen::Index i = 0; i < columns.cols(); ++i) history.push_back(columns.col(i));
   predictor_->restore(std::move(history));
   x_.set_data(columns.col(0));
+  // (State files written before it was saved lack it: the growth check is then strict.)
+  if (state.has("largest_first_residual"))
+    largest_first_residual_ = state.scalar("largest_first_residual");
   load_own_state(state);
 }
 

@@ -138,7 +138,9 @@ class CoupledSolver {
   void timed(int index, Call call);
   void check_finite(const Interface& data, const SolverWrapper& solver, int step,
                     int iteration) const;
-  void check_divergence(const std::vector<double>& norms, int step, double time) const;
+  /// Throws DivergenceError; a growth at the solvers' noise level becomes a note instead.
+  void check_divergence(const std::vector<double>& norms, int step, double time,
+                        std::vector<std::string>& notes) const;
   void adopt_interfaces();
   void check_interfaces_match() const;
 
@@ -158,6 +160,10 @@ class CoupledSolver {
   std::array<double, 2> solver_time_total_{};
   double own_solvers_time_step_ = 0.0, own_solvers_time_total_ = 0.0;
   int own_iterations_ = 0;
+  /// The largest residual of a step's first iteration in the run: the scale the noise floor of
+  /// the growth check is measured against.
+  double largest_first_residual_ = 0.0;
+  static constexpr double kNoiseFloor = 1e-6;
 };
 
 using CoupledSolverRegistry = Registry<CoupledSolver>;

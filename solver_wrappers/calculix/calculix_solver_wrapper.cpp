@@ -98,7 +98,7 @@ CalculixSolverWrapper::CalculixSolverWrapper(const Settings& settings, const Run
     if (variable != "pressure" && variable != "traction")
       settings.fail("input_variables", "'" + variable + "': the loads are pressure and traction");
   threads_ = settings.get_int_in_range("threads", 1, 1, 64);
-  timeout_ = settings.get_in_range("timeout", 600.0, Range::positive());
+  timeout_ = settings.get_in_range("timeout", 600.0, Range::timeout());
   save_results_ = settings.get<bool>("save_results", true);
   allow_reduced_integration_ = settings.get<bool>("allow_reduced_integration", false);
   state_reset_key_ = settings.get_choice("state_reset", "auto", {"auto", "restart", "replay"});

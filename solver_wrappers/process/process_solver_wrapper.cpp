@@ -134,8 +134,8 @@ ProcessSolverWrapper::ProcessSolverWrapper(const Settings& settings, const RunSe
   if (default_command) default_environment_ = default_command->environment;
   transport_kind_ =
       protocol::parse_transport_kind(settings.get_choice("transport", "pipe", {"pipe", "file"}));
-  timeout_ = settings.get_in_range("timeout", 600.0, Range::positive());  // seconds
-  startup_timeout_ = settings.get_in_range("startup_timeout", 60.0, Range::positive());
+  timeout_ = settings.get_in_range("timeout", 600.0, Range::timeout());  // seconds
+  startup_timeout_ = settings.get_in_range("startup_timeout", 60.0, Range::timeout());
   // Reading the reply pipe without sleeping saves a process wake-up per message on fast solvers
   // (docs/benchmarks.md); on slow ones it costs at most this much CPU per message.
   busy_wait_ = std::chrono::microseconds(

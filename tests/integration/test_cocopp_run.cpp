@@ -77,6 +77,27 @@ solver_wrappers:
   fs::remove_all(dir);
 }
 
+// The flow-structure tube run long after its pulse (1500 steps): a step's first residual is
+// small and its iterations wander at the solvers' noise, creeping up for 10 iterations in step
+// 1429 (to 3.5e-13, 6e-9 of the run's largest first residual). That is a stall, not a
+// divergence: the run goes on to its end, and the step's warning says why it was not stopped.
+TEST(CocoppRun, AResidualGrowingAtTheNoiseFloorIsNotADivergence) {
+  const fs::path dir = copy_example("tube/flow_structure", "fs_long");
+  edit(dir / "case.yaml", "number_of_timesteps: 100", "number_of_timesteps: 1500");
+  for (const char* file : {"flow/tube_flow.yaml", "structure/tube_structure.yaml"})
+    edit(dir / file, "interval: 10", "interval: 0");  // no VTK files
+  const CommandResult run = run_cocopp("run -q " + (dir / "case.yaml").string());
+  const auto summary = read_json(dir / "results" / "case.summary.json");
+  EXPECT_EQ(summary["steps_completed"].get<int>(), 1500) << run.output;
+  EXPECT_NE(summary["status"].get<std::string>(), "diverged");
+  bool noted = false;
+  for (const auto& warning : summary["warnings"])
+    noted = noted || warning.get<std::string>().find("the solvers' noise, not a divergence") !=
+                         std::string::npos;
+  EXPECT_TRUE(noted) << summary["warnings"];
+  fs::remove_all(dir);
+}
+
 TEST(CocoppRun, YamlAndJsonGiveIdenticalRuns) {
   const fs::path yaml_dir = copy_example("tube/flow_structure", "fs_yaml");
   const fs::path json_dir = copy_example("tube/flow_structure", "fs_json");
@@ -147,6 +168,35 @@ TEST(CocoppCheck, UnknownTypeWrongTypeAndRange) {
   EXPECT_NE(check.output.find("missing required key 'solver_wrappers[1].working_directory'"),
             std::string::npos)
       << check.output;
+  fs::remove_all(dir);
+}
+
+// Numbers `check` used to pass that broke the run (issue 17): an end time beyond the int
+// range of steps ("completed after 0 time steps"), a start step near it (negative step
+// numbers), a timeout whose deadline overflows the clock; and two solvers in one working
+// directory, which share a channel.
+TEST(CocoppCheck, NumbersThatWouldBreakTheRunAndASharedWorkingDirectory) {
+  const fs::path dir = copy_example("tube/flow_structure", "check_ranges");
+  const fs::path file = dir / "case.yaml";
+  const std::string original = read_text(file);
+  auto expect_error = [&](const std::string& from, const std::string& to,
+                          const std::string& message) {
+    write_text(file, original);
+    edit(file, from, to);
+    const auto check = run_cocopp("check " + file.string());
+    EXPECT_EQ(check.exit_code, 2) << check.output;
+    EXPECT_NE(check.output.find(message), std::string::npos) << check.output;
+  };
+  expect_error("number_of_timesteps: 100", "end_time: 1.0e+6",
+               "'settings.end_time': is 1e+10 time steps of delta_t after the start: at most "
+               "1000000000 are possible");
+  expect_error("number_of_timesteps: 100", "number_of_timesteps: 100\n  timestep_start: 2147483000",
+               "'settings.timestep_start'");
+  expect_error("    working_directory: structure\n",
+               "    working_directory: structure\n    timeout: 1.0e+10\n",
+               "'solver_wrappers[1].timeout': must be in (0, 10000000], got 10000000000");
+  expect_error("    working_directory: structure\n", "    working_directory: flow/\n",
+               "'solver_wrappers[1].working_directory': is also the first solver's");
   fs::remove_all(dir);
 }
 

@@ -347,7 +347,7 @@ TEST_F(ProcessSolverWrapperSetupTest, SettingsAreValidatedWhenBuilt) {
       error_message<CaseError>([&] { create_flow("command: [./s]\ntransport: pipes\n"); }),
       "did you mean 'pipe'");
   EXPECT_CONTAINS(error_message<CaseError>([&] { create_flow("command: [./s]\ntimeout: 0\n"); }),
-                  "'timeout': must be > 0");
+                  "'timeout': must be in (0, 10000000], got 0");
   EXPECT_CONTAINS(error_message<CaseError>([&] { create_flow(""); }),
                   "missing required key 'command'");
   EXPECT_CONTAINS(error_message<CaseError>([&] { create_flow("command: []\n"); }),
