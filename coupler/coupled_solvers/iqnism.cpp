@@ -1,5 +1,6 @@
-// iqnism: interface quasi-Newton with a surrogate (IQN-ILSM; Delaissé, Demeester, Haelterman
-// and Degroote, Computers & Structures 2022; CoCoNuT's `iqnism`).
+// iqnism: interface quasi-Newton with a surrogate (IQN-ILSM; Delaissé et al., surrogate-based
+// acceleration of quasi-Newton techniques for FSI, Computers & Structures 2022; CoCoNuT's
+// `iqnism`).
 //
 // IQN-ILS learns the inverse Jacobian of the residual only on the span of its secant columns;
 // what they do not explain gets a Gauss-Seidel step, which a strongly coupled problem amplifies.
@@ -7,7 +8,7 @@
 // solved first in every time step by its own coupled solver (iqni), whose secant model then
 // approximates the surrogate's inverse Jacobian. With dr = -r and the model's fit V c ~ dr:
 //     x <- x~ + W c + N_s (dr - V c)          (the model holds information)
-//     x <- x~ + N_s dr - (1 - omega) q_s      (it does not yet: the step's first update)
+//     x <- x~ + N_s dr + (1 - omega) q_s      (it does not yet: the step's first update)
 //     x <- x + omega r                        (neither does the surrogate)
 // where N_s is the surrogate's secant model and q_s = dr - V_s c_s the part of dr its columns
 // do not explain, which is relaxed by omega. Where the surrogate's Jacobian is exact, the
@@ -122,7 +123,9 @@ class Iqnism : public CoupledSolver {
       return xt + dxt;
     }
     if (!surrogate_ready) return x + omega_ * r;
-    return xt + surrogate_predict(dr) - (1.0 - omega_) * surrogate_unexplained(dr);
+    // x~ steps the unexplained part r_u of r fully; omega relaxes it: x~ - (1 - omega) r_u,
+    // and q_s = -r_u.
+    return xt + surrogate_predict(dr) + (1.0 - omega_) * surrogate_unexplained(dr);
   }
 
   void on_converged(const Eigen::VectorXd&, const Eigen::VectorXd& xt,

@@ -274,3 +274,39 @@ TEST(Iqnism, AOneWayMapperNeedsItsCounterpart) {
       << message;
   EXPECT_NE(message.find("case.yaml:"), std::string::npos) << message;
 }
+
+// The step's first update before the model has columns: what the surrogate's columns do not
+// explain is relaxed by omega, x + omega r on that part. The surrogate here only ever moves
+// along the first point (its offset and its coupling act there alone), so its columns span
+// that direction; on the second point the update must be exactly relaxation: x_2 = omega r_1
+// from x_1 = 0, where a wrong sign would give (2 - omega) r_1.
+TEST(Iqnism, WhatTheSurrogateDoesNotExplainIsRelaxedByOmega) {
+  class RecordingFlow : public AffineSolver {
+   public:
+    using AffineSolver::AffineSolver;
+    const Interface& solve(const Interface& input) override {
+      inputs.push_back(input.values("wall", "displacement").col(1));
+      return AffineSolver::solve(input);
+    }
+    std::vector<Eigen::VectorXd> inputs;
+  };
+  const auto part = cocopp::testing::line_model_part(2);
+  const Eigen::Matrix2d two = 2.0 * Eigen::Matrix2d::Identity();
+  RecordingFlow flow("flow", part, "displacement", "pressure", two, Eigen::Vector2d(1.0, 1.0));
+  AffineSolver structure("structure", part, "pressure", "displacement",
+                         Eigen::Vector2d(-0.75, -0.75).asDiagonal().toDenseMatrix(),
+                         Eigen::Vector2d::Zero());
+  AffineSolver s_flow("s_flow", part, "displacement", "pressure", two, Eigen::Vector2d(1.0, 0.0));
+  AffineSolver s_structure("s_structure", part, "pressure", "displacement",
+                           Eigen::Vector2d(-0.75, -0.25).asDiagonal().toDenseMatrix(),
+                           Eigen::Vector2d::Zero());
+  test_solvers()["s_flow"] = &s_flow;
+  test_solvers()["s_structure"] = &s_structure;
+  auto coupled = make_iqnism();
+  coupled->initialize(flow, structure);
+  coupled->solve_step(1, 0.1);
+  ASSERT_GE(flow.inputs.size(), 2u);
+  const double r1 = -0.75;  // x~_1 - x_1 on the second point, from x_1 = 0
+  EXPECT_DOUBLE_EQ(flow.inputs[0](1), 0.0);
+  EXPECT_NEAR(flow.inputs[1](1), 0.05 * r1, 1e-12);
+}
