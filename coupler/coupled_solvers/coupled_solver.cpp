@@ -98,16 +98,7 @@ void CoupledSolver::check_interfaces_match() const {
 template <class Call>
 void CoupledSolver::timed(int index, Call call) {
   // Also a call that throws (a rejected input) took the solver's time, not the coupler's.
-  struct Stopwatch {
-    CoupledSolver& owner;
-    int index;
-    Clock::time_point start = Clock::now();
-    ~Stopwatch() {
-      const double elapsed = seconds_since(start);
-      owner.solver_time_step_[index] += elapsed;
-      owner.solver_time_total_[index] += elapsed;
-    }
-  } stopwatch{*this, index};
+  const Stopwatch stopwatch(solver_time_step_[index], solver_time_total_[index]);
   call();
 }
 

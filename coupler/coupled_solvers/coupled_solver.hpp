@@ -111,11 +111,9 @@ class CoupledSolver {
   /// What to suggest when this method diverges.
   virtual std::string divergence_advice() const;
 
-  /// Count `seconds` as time of the coupled solver's own solvers, not of the coupler.
-  void add_own_solvers_time(double seconds) {
-    own_solvers_time_step_ += seconds;
-    own_solvers_time_total_ += seconds;
-  }
+  /// The scope of a Stopwatch counts as time of the coupled solver's own solvers (its
+  /// surrogate, say), not the coupler's.
+  struct OwnSolversStopwatch;
   /// Iterations of the coupled solver's own coupling (iqnism's surrogate) in this step, for
   /// the step's record.
   void set_own_iterations(int iterations) { own_iterations_ = iterations; }
@@ -139,6 +137,26 @@ class CoupledSolver {
   void check_finite(const Interface& data, const SolverWrapper& solver, int step,
                     int iteration) const;
   /// Throws DivergenceError; a growth at the solvers' noise level becomes a note instead.
+  /// Adds the time of its scope to a step's and a run's total, also when the scope is left
+  /// by an exception (a rejected input, an interrupted surrogate step took that time too).
+  class Stopwatch {
+   public:
+    Stopwatch(double& step_total, double& run_total) : step_(step_total), run_(run_total) {}
+    ~Stopwatch() {
+      const double elapsed =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+      step_ += elapsed;
+      run_ += elapsed;
+    }
+    Stopwatch(const Stopwatch&) = delete;
+    Stopwatch& operator=(const Stopwatch&) = delete;
+
+   private:
+    double& step_;
+    double& run_;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  };
+
   void check_divergence(const std::vector<double>& norms, int step, double time,
                         std::vector<std::string>& notes) const;
   void adopt_interfaces();
@@ -164,6 +182,12 @@ class CoupledSolver {
   /// the growth check is measured against.
   double largest_first_residual_ = 0.0;
   static constexpr double kNoiseFloor = 1e-6;
+};
+
+struct CoupledSolver::OwnSolversStopwatch {
+  explicit OwnSolversStopwatch(CoupledSolver& owner)
+      : stopwatch(owner.own_solvers_time_step_, owner.own_solvers_time_total_) {}
+  Stopwatch stopwatch;
 };
 
 using CoupledSolverRegistry = Registry<CoupledSolver>;

@@ -25,8 +25,6 @@
 // model standing in for a 3D one.
 #include <fmt/format.h>
 
-#include <chrono>
-
 #include "coupler/coupled_solvers/coupled_solver.hpp"
 #include "coupler/coupled_solvers/models/model.hpp"
 #include "coupler/coupled_solvers/surrogate_mapping.hpp"
@@ -85,7 +83,7 @@ class Iqnism : public CoupledSolver {
 
   void on_step_start() override {
     model_->initialize_step();
-    const OwnSolversTime stopwatch{*this};
+    const OwnSolversStopwatch stopwatch(*this);
     StepRecord record;
     try {
       record = surrogate_->iterate_step(current_step(), current_time());
@@ -135,21 +133,10 @@ class Iqnism : public CoupledSolver {
 
   void on_step_end() override {
     model_->finalize_step();
-    const OwnSolversTime stopwatch{*this};
+    const OwnSolversStopwatch stopwatch(*this);
     if (synchronize_) surrogate_->synchronize(mapping_.to_surrogate(x().data()));
     surrogate_->commit_step(pending_surrogate_record_);
   }
-
-  /// Counts the time of its scope as the surrogate's, also when the scope is left by an
-  /// exception (an interrupted or failed surrogate step is not the coupler's time either).
-  struct OwnSolversTime {
-    Iqnism& owner;
-    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
-    ~OwnSolversTime() {
-      owner.add_own_solvers_time(
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    }
-  };
 
   Model& surrogate_model() { return *surrogate_->residual_model(); }
   /// N_s dr: the surrogate's model's dx~, in the case's interface.
