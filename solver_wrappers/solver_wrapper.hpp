@@ -54,6 +54,11 @@ class SolverWrapper {
   virtual void finalize_step() = 0;
   /// Write the solver's own output for the step.
   virtual void output_step() = 0;
+  /// Keep what the solver needs to restart after `step`, the step finalized last (the coupler
+  /// asks whenever it saves its own state). A restarted run gives the wrapper
+  /// RunSettings::timestep_start = that step; a wrapper that cannot restart refuses
+  /// timestep_start > 0 with a message that says so (in its constructor or initialize()).
+  virtual void save_restart(int /*step*/) {}
   /// Stop the solver. Safe to call more than once, and after a failure.
   virtual void finalize() = 0;
 };

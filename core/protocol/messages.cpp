@@ -52,6 +52,8 @@ std::string message_name(MessageType type) {
       return "OUTPUT_STEP";
     case MessageType::kStop:
       return "STOP";
+    case MessageType::kSaveRestart:
+      return "SAVE_RESTART";
     case MessageType::kHello:
       return "HELLO";
     case MessageType::kOk:
@@ -85,6 +87,10 @@ Frame encode_initialize_step(const StepInfo& step) {
 
 Frame encode_solve(const double* values, std::size_t count) {
   return start(MessageType::kSolve).f64_array(values, count).take();
+}
+
+Frame encode_save_restart(std::int32_t step) {
+  return start(MessageType::kSaveRestart).i32(step).take();
 }
 
 Frame encode_empty(MessageType type) {
@@ -142,6 +148,13 @@ std::vector<double> decode_solve(const Frame& frame) {
   auto values = reader.f64_array();
   reader.expect_end();
   return values;
+}
+
+std::int32_t decode_save_restart(const Frame& frame) {
+  FrameReader reader = open(frame, MessageType::kSaveRestart);
+  const std::int32_t step = reader.i32();
+  reader.expect_end();
+  return step;
 }
 
 void decode_empty(const Frame& frame, MessageType expected) {

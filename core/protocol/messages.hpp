@@ -25,6 +25,7 @@ enum class MessageType : std::uint8_t {
   kFinalizeStep = 4,
   kOutputStep = 5,
   kStop = 6,
+  kSaveRestart = 7,
   kHello = 128,
   kOk = 129,
   kInterface = 130,
@@ -52,6 +53,8 @@ struct StepInfo {
 Frame encode_initialize(const sdk::RunInfo& run);
 Frame encode_initialize_step(const StepInfo& step);
 Frame encode_solve(const double* values, std::size_t count);
+/// SAVE_RESTART: write what the solver needs to restart after `step`, the step it finalized last.
+Frame encode_save_restart(std::int32_t step);
 /// A message without fields: FINALIZE_STEP, OUTPUT_STEP, STOP, or the reply OK.
 Frame encode_empty(MessageType type);
 
@@ -68,6 +71,7 @@ Frame encode_rejected(const std::string& message);
 sdk::RunInfo decode_initialize(const Frame& frame);
 StepInfo decode_initialize_step(const Frame& frame);
 std::vector<double> decode_solve(const Frame& frame);
+std::int32_t decode_save_restart(const Frame& frame);
 void decode_empty(const Frame& frame, MessageType expected);
 Hello decode_hello(const Frame& frame);
 sdk::InterfaceDescription decode_interface(const Frame& frame);

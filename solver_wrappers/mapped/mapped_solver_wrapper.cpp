@@ -91,6 +91,7 @@ class MappedSolverWrapper : public SolverWrapper {
 
   void finalize_step() override { inner_->finalize_step(); }
   void output_step() override { inner_->output_step(); }
+  void save_restart(int step) override { inner_->save_restart(step); }
   void finalize() override {
     inner_->finalize();
     if (builds_ > 1)  // rebuilt during the run: what the sliding interface costs

@@ -330,6 +330,11 @@ void ProcessSolverWrapper::output_step() {
   call("output_step", &request, MessageType::kOk, timeout_, decode_ok);
 }
 
+void ProcessSolverWrapper::save_restart(int step) {
+  const Frame request = protocol::encode_save_restart(step);
+  call("save_restart", &request, MessageType::kOk, timeout_, decode_ok);
+}
+
 void ProcessSolverWrapper::finalize() {
   if (state_ != State::kRunning) {  // never started, already finalized, or failed
     release();

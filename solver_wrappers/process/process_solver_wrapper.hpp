@@ -59,6 +59,7 @@ class ProcessSolverWrapper : public SolverWrapper {
   const Interface& solve(const Interface& input) override;
   void finalize_step() override;
   void output_step() override;
+  void save_restart(int step) override;
   void finalize() override;
 
   const std::vector<std::string>& command() const { return command_; }

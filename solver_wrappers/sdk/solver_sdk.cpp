@@ -114,6 +114,11 @@ class Server {
         protocol::decode_empty(request, type);
         solver_.output_step();
         return reply_ok();
+      case MessageType::kSaveRestart: {
+        const std::int32_t step = protocol::decode_save_restart(request);
+        if (solver_.can_restart()) solver_.save_restart(step);
+        return reply_ok();
+      }
       case MessageType::kStop:
         protocol::decode_empty(request, type);
         solver_.finalize();
@@ -131,6 +136,11 @@ class Server {
 
   void on_initialize(const RunInfo& run) {
     if (initialized_) throw protocol::ProtocolError("INITIALIZE received twice");
+    if (run.timestep_start > 0 && !solver_.can_restart())
+      throw std::runtime_error(
+          "the coupler restarts the run after time step " + std::to_string(run.timestep_start) +
+          ", but this solver cannot restart (it saves no restart data): run the case from the "
+          "start");
     InterfaceDescription description = solver_.initialize(run);
     validate(description);
     initialized_ = true;

@@ -38,6 +38,14 @@ class Solver {
   virtual void finalize_step() = 0;
   virtual void output_step() {}
   virtual void finalize() {}
+
+  /// Restart support. A solver that can restart returns true; save_restart(step) then writes
+  /// what it needs to continue after `step` (the step it finalized last; the coupler asks
+  /// whenever it saves its own state), and initialize() with run.timestep_start > 0 reads
+  /// that back instead of starting from its initial state. A solver that returns false is
+  /// never asked to save, and a restart of it stops with an error that says so.
+  virtual bool can_restart() const { return false; }
+  virtual void save_restart(std::int32_t /*step*/) {}
 };
 
 /// Whether the command line asks for help (--help or -h): solvers print their usage then.

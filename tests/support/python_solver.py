@@ -11,6 +11,7 @@ import sys
 
 # Message types (the first byte of every frame).
 INITIALIZE, INITIALIZE_STEP, SOLVE, FINALIZE_STEP, OUTPUT_STEP, STOP = 1, 2, 3, 4, 5, 6
+SAVE_RESTART = 7
 HELLO, OK, INTERFACE, DATA, ERROR = 128, 129, 130, 131, 132
 PROTOCOL_VERSION = 1
 POINTS = 3
@@ -86,6 +87,8 @@ while True:
             [1000.0 * displacement[3 * i + 1] + step for i in range(POINTS)]))
     elif kind in (FINALIZE_STEP, OUTPUT_STEP):
         send(bytes([OK]))
+    elif kind == SAVE_RESTART:
+        send(bytes([OK]))  # its output depends on the step only: nothing to keep
     elif kind == STOP:
         send(bytes([OK]))
         sys.exit(0)

@@ -99,6 +99,9 @@ class TestSolver : public cocopp::sdk::Solver {
     return description;
   }
 
+  // Its output depends on the step and the input only: a restart needs nothing saved.
+  bool can_restart() const override { return true; }
+
   void initialize_step(std::int32_t step, double time) override {
     step_ = step;
     iteration_ = 0;
