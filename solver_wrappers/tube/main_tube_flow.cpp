@@ -38,6 +38,9 @@ Input file keys (SI units):
   output:
     interval              write output/tube_flow_<step>.vtk every N steps (0 = never, default)
     directory             output directory (default output)
+
+Restarts: when the coupler saves its state the solver writes
+restart/tube_flow_<step>.restart; a restarted run (timestep_start > 0) reads it back.
 )";
 
 }  // namespace
@@ -45,7 +48,7 @@ Input file keys (SI units):
 int main(int argc, char** argv) {
   using namespace cocopp::tube;
   return run_tube_solver<TubeFlow, FlowSide>(
-      argc, argv, kUsage, "tube_flow.yaml",
+      argc, argv, "tube_flow", kUsage, "tube_flow.yaml",
       [](const std::string& input_file, const cocopp::sdk::RunInfo& run) {
         return std::make_unique<TubeFlow>(TubeFlowParameters::load(input_file), run.delta_t,
                                           run.timestep_start);

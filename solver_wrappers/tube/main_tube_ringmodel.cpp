@@ -26,6 +26,9 @@ Input file keys (SI units):
   output:
     interval              write output/tube_ringmodel_<step>.vtk every N steps (0 = never)
     directory             output directory (default output)
+
+Restarts: when the coupler saves its state the solver writes
+restart/tube_ringmodel_<step>.restart; a restarted run (timestep_start > 0) reads it back.
 )";
 
 }  // namespace
@@ -33,7 +36,7 @@ Input file keys (SI units):
 int main(int argc, char** argv) {
   using namespace cocopp::tube;
   return run_tube_solver<TubeRingmodel, WallSide>(
-      argc, argv, kUsage, "tube_ringmodel.yaml",
+      argc, argv, "tube_ringmodel", kUsage, "tube_ringmodel.yaml",
       [](const std::string& input_file, const cocopp::sdk::RunInfo& run) {
         return std::make_unique<TubeRingmodel>(TubeRingmodelParameters::load(input_file),
                                                run.timestep_start);

@@ -31,6 +31,9 @@ Input file keys (SI units):
   output:
     interval              write output/tube_structure_<step>.vtk every N steps (0 = never)
     directory             output directory (default output)
+
+Restarts: when the coupler saves its state the solver writes
+restart/tube_structure_<step>.restart; a restarted run (timestep_start > 0) reads it back.
 )";
 
 }  // namespace
@@ -38,7 +41,7 @@ Input file keys (SI units):
 int main(int argc, char** argv) {
   using namespace cocopp::tube;
   return run_tube_solver<TubeStructure, WallSide>(
-      argc, argv, kUsage, "tube_structure.yaml",
+      argc, argv, "tube_structure", kUsage, "tube_structure.yaml",
       [](const std::string& input_file, const cocopp::sdk::RunInfo& run) {
         return std::make_unique<TubeStructure>(TubeStructureParameters::load(input_file),
                                                run.delta_t, run.timestep_start);

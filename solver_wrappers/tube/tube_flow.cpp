@@ -153,6 +153,18 @@ void TubeFlow::update_inlet_value() {
       parameters_.inlet.boundary == InletBoundary::kVelocity ? value : value / parameters_.rho_f;
 }
 
+RestartData TubeFlow::restart_data() const {
+  return {{"unknowns", unknowns_}, {"areas", areas_}, {"displacement", displacement_}};
+}
+
+void TubeFlow::restore(const RestartData& data, const std::filesystem::path& file) {
+  unknowns_ = restart_array(data, "unknowns", unknowns_.size(), file);
+  areas_ = restart_array(data, "areas", areas_.size(), file);
+  displacement_ = restart_array(data, "displacement", displacement_.size(), file);
+  old_unknowns_ = unknowns_;
+  old_areas_ = areas_;
+}
+
 void TubeFlow::finalize_step() {
   first_iteration_ = true;
 }

@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 #include <string>
 
+#include "core/data/restart_file.hpp"
 #include "solver_wrappers/tube/banded_solver.hpp"
 #include "solver_wrappers/tube/tube_input.hpp"
 
@@ -69,6 +70,9 @@ class TubeFlow {
   void finalize_step();
   /// Write the ParaView file of `step` if the output interval says so.
   void output_step(int step) const;
+  /// What a restart after this step needs, and back (`file` names the source in errors).
+  RestartData restart_data() const;
+  void restore(const RestartData& data, const std::filesystem::path& file);
 
   int step() const { return step_; }
   double delta_t() const { return delta_t_; }

@@ -75,6 +75,15 @@ Eigen::VectorXd TubeRingmodel::solve(const Eigen::VectorXd& pressure) {
   return displacement_;
 }
 
+RestartData TubeRingmodel::restart_data() const {
+  return {{"pressure", pressure_}, {"displacement", displacement_}};
+}
+
+void TubeRingmodel::restore(const RestartData& data, const std::filesystem::path& file) {
+  pressure_ = restart_array(data, "pressure", cells(), file);
+  displacement_ = restart_array(data, "displacement", cells(), file);
+}
+
 void TubeRingmodel::output_step(int step) const {
   write_output(
       parameters_.output, "tube_ringmodel", step, parameters_.geometry, displacement_,

@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <string>
 
+#include "core/data/restart_file.hpp"
 #include "solver_wrappers/tube/tube_input.hpp"
 
 namespace cocopp::tube {
@@ -35,6 +36,9 @@ class TubeRingmodel {
   Eigen::VectorXd solve(const Eigen::VectorXd& pressure);
   void finalize_step() {}
   void output_step(int step) const;
+  /// What a restart after this step needs, and back (`file` names the source in errors).
+  RestartData restart_data() const;
+  void restore(const RestartData& data, const std::filesystem::path& file);
 
   int step() const { return step_; }
   int cells() const { return parameters_.geometry.cells; }

@@ -3,6 +3,7 @@
 // tube model (TubeFlow, TubeStructure, TubeRingmodel) through the cocopp protocol; `Side` says
 // which way the interface data goes (FlowSide: displacement in, loads out; WallSide: loads in,
 // displacement out).
+#include <filesystem>
 #include <functional>
 #include <iostream>
 #include <memory>
@@ -10,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/data/restart_file.hpp"
 #include "solver_wrappers/sdk/solver_sdk.hpp"
 #include "solver_wrappers/tube/tube_output.hpp"
 #include "solver_wrappers/tube/wall_interface.hpp"
@@ -56,11 +58,18 @@ class TubeSolver : public sdk::Solver {
  public:
   /// Builds the model once the coupler has sent the time step.
   using Factory = std::function<std::unique_ptr<Model>(const sdk::RunInfo&)>;
-  explicit TubeSolver(Factory make) : make_(std::move(make)) {}
+  /// `name` ("tube_flow", ...) names its restart files.
+  TubeSolver(std::string name, Factory make) : name_(std::move(name)), make_(std::move(make)) {}
 
   sdk::InterfaceDescription initialize(const sdk::RunInfo& run) override {
     model_ = make_(run);
-    model_->output_step(model_->step());
+    if (run.timestep_start > 0) {
+      const auto file = restart_file_name(name_, run.timestep_start);
+      model_->restore(read_restart_file(file, name_, run.timestep_start),
+                      std::filesystem::absolute(file));
+    } else {
+      model_->output_step(model_->step());
+    }
     sdk::InterfaceDescription description;
     description.model_parts.push_back(
         wall_model_part(model_->parameters().geometry, Side::inputs(), Side::outputs()));
@@ -83,7 +92,17 @@ class TubeSolver : public sdk::Solver {
   void finalize_step() override { model_->finalize_step(); }
   void output_step() override { model_->output_step(model_->step()); }
 
+  bool can_restart() const override { return true; }
+  void save_restart(std::int32_t step) override {
+    if (step != model_->step())
+      throw std::runtime_error("the coupler asked for the restart data of step " +
+                               std::to_string(step) + ", the solver is at step " +
+                               std::to_string(model_->step()));
+    write_restart_file(restart_file_name(name_, step), name_, step, model_->restart_data());
+  }
+
  private:
+  std::string name_;
   Factory make_;
   std::unique_ptr<Model> model_;
 };
@@ -91,15 +110,15 @@ class TubeSolver : public sdk::Solver {
 /// main() of a tube solver executable: --help prints `usage`, else serve the coupler with the
 /// model `make` builds from the input file (argv[1] or `default_input`).
 template <class Model, class Side, class Make>
-int run_tube_solver(int argc, char** argv, const char* usage, const std::string& default_input,
-                    Make make) {
+int run_tube_solver(int argc, char** argv, const std::string& name, const char* usage,
+                    const std::string& default_input, Make make) {
   if (sdk::wants_help(argc, argv)) {
     std::cout << usage;
     return 0;
   }
   const std::string input_file = input_file_argument(argc, argv, default_input);
   TubeSolver<Model, Side> solver(
-      [input_file, make](const sdk::RunInfo& run) { return make(input_file, run); });
+      name, [input_file, make](const sdk::RunInfo& run) { return make(input_file, run); });
   return sdk::serve(solver, argc, argv);
 }
 

@@ -148,6 +148,20 @@ void TubeStructure::finalize_step() {
   velocity_ = old_velocity_ + dt * (1.0 - gamma) * old_acceleration_ + dt * gamma * acceleration_;
 }
 
+RestartData TubeStructure::restart_data() const {
+  return {{"radius", radius_},
+          {"velocity", velocity_},
+          {"acceleration", acceleration_},
+          {"pressure", pressure_}};
+}
+
+void TubeStructure::restore(const RestartData& data, const std::filesystem::path& file) {
+  radius_ = old_radius_ = restart_array(data, "radius", cells_, file);
+  velocity_ = old_velocity_ = restart_array(data, "velocity", cells_, file);
+  acceleration_ = old_acceleration_ = restart_array(data, "acceleration", cells_, file);
+  pressure_ = restart_array(data, "pressure", cells_, file);
+}
+
 Eigen::VectorXd TubeStructure::displacement() const {
   return (radius_.array() - r0_).matrix();
 }

@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 #include <string>
 
+#include "core/data/restart_file.hpp"
 #include "solver_wrappers/tube/banded_solver.hpp"
 #include "solver_wrappers/tube/tube_input.hpp"
 
@@ -41,6 +42,9 @@ class TubeStructure {
   /// Commit the step: update the wall velocity and acceleration.
   void finalize_step();
   void output_step(int step) const;
+  /// What a restart after this step needs, and back (`file` names the source in errors).
+  RestartData restart_data() const;
+  void restore(const RestartData& data, const std::filesystem::path& file);
 
   int step() const { return step_; }
   int cells() const { return cells_; }

@@ -35,7 +35,7 @@ if(COCOPP_HAVE_CALCULIX)
 endif()
 cocopp_unit_test(solver_wrappers/tube
   SOURCES test_banded_solver.cpp test_tube_input.cpp test_tube_flow.cpp test_tube_structure.cpp
-          test_tube_ringmodel.cpp test_tube_wave_speed.cpp
+          test_tube_ringmodel.cpp test_tube_wave_speed.cpp test_restart_file.cpp
   LIBS cocopp_tube_models)
 # The example input files are read from the source tree (also without ctest's environment).
 target_compile_definitions(${COCOPP_LAST_TEST} PRIVATE
