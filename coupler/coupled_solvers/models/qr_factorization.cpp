@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "coupler/coupled_solvers/models/linear_combination.hpp"
 
@@ -23,6 +25,31 @@ void QrFactorization::clear() {
   basis_size_ = 0;
   u_.resize(0, 0);
   r_.resize(0, 0);
+}
+
+void QrFactorization::save_state(State& state) const {
+  state.set("basis", Eigen::MatrixXd(basis()));
+  state.set("basis_capacity", double(basis_.cols()));
+  state.set("u", u_);
+  state.set("r", r_);
+}
+
+void QrFactorization::load_state(const State& state, Eigen::Index rows, Eigen::Index columns) {
+  const Eigen::MatrixXd& basis = state.matrix("basis");
+  const Eigen::MatrixXd& u = state.matrix("u");
+  const Eigen::MatrixXd& r = state.matrix("r");
+  const auto capacity = static_cast<Eigen::Index>(state.scalar("basis_capacity"));
+  const Eigen::Index m = basis.cols();
+  if ((m > 0 && basis.rows() != rows) || capacity < m || u.rows() != m || u.cols() != columns ||
+      r.rows() != columns || r.cols() != columns)
+    throw std::runtime_error("the saved QR factorization in '" + state.path() +
+                             "' does not fit the saved secant columns (" + std::to_string(rows) +
+                             " x " + std::to_string(columns) + ")");
+  basis_.resize(rows, capacity);
+  basis_.leftCols(m) = basis;
+  basis_size_ = m;
+  u_ = u;
+  r_ = r;
 }
 
 void QrFactorization::append_basis_vector(const Eigen::VectorXd& b) {

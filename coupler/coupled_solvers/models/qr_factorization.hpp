@@ -12,6 +12,8 @@
 #include <Eigen/Core>
 #include <cmath>
 
+#include "coupler/results/state.hpp"
+
 namespace cocopp {
 
 class QrFactorization {
@@ -35,6 +37,13 @@ class QrFactorization {
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
   /// Q^T b (k values).
   Eigen::VectorXd project(const Eigen::VectorXd& b) const;
+
+  /// The factors as they are (B with its capacity, U, R): a factorization rebuilt from V
+  /// differs in round-off, and a restarted run is to continue bit for bit.
+  void save_state(State& state) const;
+  /// Takes the factors save_state() wrote, for a V of `columns` columns of length `rows`;
+  /// throws std::runtime_error naming the state path if they do not fit.
+  void load_state(const State& state, Eigen::Index rows, Eigen::Index columns);
 
  private:
   /// A new column v split into its coefficients on Q and the rest, q_new * rho, orthogonal

@@ -129,6 +129,7 @@ void SecantColumns::save_state(State& state) const {
   Eigen::VectorXd ages(size());
   for (int i = 0; i < size(); ++i) ages(i) = columns_[std::size_t(i)].age;
   state.set("age", ages);
+  qr_.save_state(state.group("qr"));
 }
 
 void SecantColumns::load_state(const State& state) {
@@ -140,6 +141,9 @@ void SecantColumns::load_state(const State& state) {
   qr_.clear();
   for (Eigen::Index i = 0; i < ages.size(); ++i)  // saved newest first: append keeps the order
     restore({v.col(i), w.col(i), int(ages(i))});
+  // The saved factors, not the rebuilt ones, which differ in round-off (state files written
+  // before they were saved have none: the rebuilt ones stay).
+  if (state.has_group("qr")) qr_.load_state(state.group("qr"), v.rows(), ages.size());
 }
 
 namespace {
