@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/data/variables.hpp"
+#include "coupler/results/results_reader.hpp"
 
 #ifndef COCOPP_VERSION
 #define COCOPP_VERSION "unknown"  // set from PROJECT_VERSION in coupler/CMakeLists.txt
@@ -135,6 +136,122 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& file, const RunDescrip
   }
 }
 
+ResultsWriter::ResultsWriter(const std::filesystem::path& file, const RunDescription& run,
+                             const Interface& x, const Interface& y, int continue_after_step)
+    : path_(file), solver_count_(run.solver_names.size()) {
+  check_continuable(run, continue_after_step);
+  // check_continuable left rows_ at the rows to keep: the steps up to continue_after_step.
+  const QuietErrors quiet;
+  try {
+    file_ = H5Handle(checked(H5Fopen(path_.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), "opening the file"),
+                     H5Fclose);
+    x_blocks_ = open_interface("x", x);
+    y_blocks_ = open_interface("y", y);
+    open_step_series();
+    // Only now that everything fits: the file changes.
+    mark_continued(continue_after_step);
+    truncate();
+    flush();
+  } catch (const H5Error& error) {
+    release();
+    fail(error);
+  }
+}
+
+void ResultsWriter::check_continuable(const RunDescription& run, int step) {
+  const auto mismatch = [&](const std::string& what) {
+    throw std::runtime_error("results file '" + path_.string() + "' cannot be continued after " +
+                             "step " + std::to_string(step) + ": " + what);
+  };
+  if (!std::filesystem::exists(path_))
+    mismatch("it is not there (the restart appends to the results of the run it continues)");
+  const ResultsReader reader(path_);
+  if (reader.delta_t() != run.delta_t)
+    mismatch("it was written with delta_t " + std::to_string(reader.delta_t()) + ", the case has " +
+             std::to_string(run.delta_t));
+  const std::vector<int> steps = reader.steps();
+  const auto found = std::find(steps.begin(), steps.end(), step);
+  if (found == steps.end())
+    mismatch(steps.empty() ? std::string("it holds no steps")
+                           : "it holds steps " + std::to_string(steps.front()) + " to " +
+                                 std::to_string(steps.back()));
+  rows_before_ = rows_ = static_cast<int>(found - steps.begin()) + 1;
+  const auto offsets = reader.dataset("residuals/offset").values;
+  const auto counts = reader.dataset("residuals/count").values;
+  if (offsets.size() < std::size_t(rows_) || counts.size() < std::size_t(rows_))
+    mismatch("its residuals hold fewer steps than its step list");
+  norms_written_ = static_cast<hsize_t>(offsets[rows_ - 1] + counts[rows_ - 1]);
+}
+
+void ResultsWriter::mark_continued(int step) {
+  const hid_t root = file_.get();
+  set_string(root, "status", "running");
+  set_string(root, "message", "");
+  set_int(root, "restarted_after_step", step);
+}
+
+std::vector<ResultsWriter::BlockSeries> ResultsWriter::open_interface(const char* name,
+                                                                      const Interface& interface) {
+  std::vector<BlockSeries> out;
+  for (const auto& b : interface.blocks()) {
+    const std::string dataset = std::string(name) + "/" + b.model_part + "/" + b.variable;
+    Series series = open_series(dataset);
+    const std::vector<hsize_t> row{static_cast<hsize_t>(b.points),
+                                   static_cast<hsize_t>(b.components)};
+    if (series.row_shape != row)
+      throw std::runtime_error("results file '" + path_.string() + "': " + dataset +
+                               " does not have the layout of this run's interface " + name + " (" +
+                               interface.describe() + "): was the case changed?");
+    out.push_back({b, std::move(series)});
+  }
+  return out;
+}
+
+ResultsWriter::Series ResultsWriter::open_series(const std::string& name) {
+  if (H5Lexists(file_.get(), name.substr(0, name.find('/')).c_str(), H5P_DEFAULT) <= 0 ||
+      H5Oexists_by_name(file_.get(), name.c_str(), H5P_DEFAULT) <= 0)
+    throw std::runtime_error("results file '" + path_.string() + "' has no dataset " + name +
+                             ": was the case changed?");
+  H5Handle dataset(checked(H5Dopen2(file_.get(), name.c_str(), H5P_DEFAULT), "opening " + name),
+                   H5Dclose);
+  std::vector<hsize_t> shape = dataset_shape(dataset.get());
+  shape.erase(shape.begin());
+  return {std::move(dataset), std::move(shape)};
+}
+
+void ResultsWriter::open_step_series() {
+  steps_.step = open_series("steps/step");
+  steps_.time = open_series("steps/time");
+  steps_.iterations = open_series("steps/iterations");
+  steps_.converged = open_series("steps/converged");
+  steps_.wall_time = open_series("steps/wall_time");
+  steps_.coupler_time = open_series("steps/coupler_time");
+  steps_.solver_times = open_series("steps/solver_times");
+  steps_.norms = open_series("residuals/norms");
+  steps_.offset = open_series("residuals/offset");
+  steps_.count = open_series("residuals/count");
+  if (steps_.solver_times.row_shape != std::vector<hsize_t>{solver_count_})
+    throw std::runtime_error("results file '" + path_.string() + "' was written for " +
+                             std::to_string(steps_.solver_times.row_shape.at(0)) + " solvers");
+}
+
+void ResultsWriter::truncate() {
+  const auto cut = [](const Series& series, hsize_t rows) {
+    std::vector<hsize_t> extent{rows};
+    extent.insert(extent.end(), series.row_shape.begin(), series.row_shape.end());
+    checked(H5Dset_extent(series.dataset.get(), extent.data()),
+            "truncating " + object_name(series.dataset.get()));
+  };
+  const auto rows = static_cast<hsize_t>(rows_);
+  for (const auto* blocks : {&x_blocks_, &y_blocks_})
+    for (const auto& b : *blocks) cut(b.series, rows);
+  for (const Series* series :
+       {&steps_.step, &steps_.time, &steps_.iterations, &steps_.converged, &steps_.wall_time,
+        &steps_.coupler_time, &steps_.solver_times, &steps_.offset, &steps_.count})
+    cut(*series, rows);
+  cut(steps_.norms, norms_written_);
+}
+
 ResultsWriter::~ResultsWriter() {
   if (!is_open()) return;
   try {
@@ -260,7 +377,7 @@ void ResultsWriter::write_step(const StepRecord& record, const Interface& x, con
   } catch (const H5Error& error) {
     fail(error);
   }
-  ++steps_written_;
+  ++rows_;
   norms_written_ += record.residual_norms.size();
 }
 
@@ -316,7 +433,7 @@ void ResultsWriter::write_step_scalars(const StepRecord& record) {
 }
 
 void ResultsWriter::write_row(const Series& series, hid_t memory_type, const void* data) {
-  write_rows(series.dataset.get(), series.row_shape, steps_written_, 1, memory_type, data);
+  write_rows(series.dataset.get(), series.row_shape, rows_, 1, memory_type, data);
 }
 
 void ResultsWriter::flush() {
@@ -332,7 +449,7 @@ void ResultsWriter::close(const std::string& status, const std::string& message)
     set_string(root, "status", status);
     set_string(root, "message", message);
     set_string(root, "finished", iso_time_now());
-    set_int(root, "steps_written", steps_written_);
+    set_int(root, "steps_written", rows_);
     checked(release(), "closing the file");
   } catch (const H5Error& error) {
     release();

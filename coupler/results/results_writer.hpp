@@ -23,6 +23,12 @@ class ResultsWriter {
   /// std::runtime_error if the file cannot be written.
   ResultsWriter(const std::filesystem::path& file, const RunDescription& run, const Interface& x,
                 const Interface& y);
+  /// A run restarted after `step`: opens the existing file of the run it continues, checks
+  /// that it was written for the same time step and interfaces and holds `step`, drops the
+  /// rows after `step` (computed again now) and appends from there. Throws
+  /// std::runtime_error naming the file and what does not fit.
+  ResultsWriter(const std::filesystem::path& file, const RunDescription& run, const Interface& x,
+                const Interface& y, int continue_after_step);
   /// Closes with status "incomplete" if close() was not called; never throws.
   ~ResultsWriter();
   ResultsWriter(const ResultsWriter&) = delete;
@@ -39,7 +45,8 @@ class ResultsWriter {
 
   const std::filesystem::path& path() const { return path_; }
   bool is_open() const { return file_.valid(); }
-  int steps_written() const { return steps_written_; }
+  /// Steps written by this run (a restarted run: since the restart).
+  int steps_written() const { return rows_ - rows_before_; }
 
  private:
   /// One extendible dataset, grown by one row (or by a run of values) per step.
@@ -59,6 +66,13 @@ class ResultsWriter {
   };
 
   void create_file();
+  void check_continuable(const RunDescription& run, int step);
+  void mark_continued(int step);
+  std::vector<BlockSeries> open_interface(const char* name, const Interface& interface);
+  void open_step_series();
+  Series open_series(const std::string& name);
+  /// Drops every row after the first rows_ (and the residual norms after norms_written_).
+  void truncate();
   void write_run_attributes(const RunDescription& run);
   std::vector<BlockSeries> create_interface(const char* name, const char* role,
                                             const Interface& interface);
@@ -77,7 +91,8 @@ class ResultsWriter {
 
   std::filesystem::path path_;
   std::size_t solver_count_ = 0;
-  int steps_written_ = 0;
+  int rows_ = 0;         ///< rows in the file's per-step datasets
+  int rows_before_ = 0;  ///< of them, written by the run this one continues
   hsize_t norms_written_ = 0;
 
   // Declared first so that it is destroyed last: the datasets below live in it.

@@ -127,6 +127,7 @@ json RunSummary::to_json() const {
   out["delta_t"] = run_.delta_t;
   out["timestep_start"] = run_.timestep_start;
   out["number_of_timesteps"] = run_.number_of_timesteps;
+  out["restarted"] = run_.restarted;
   out["completed"] = finished_ && ran_all_steps(outcome_.status);
   out["status"] = finished_ ? to_string(outcome_.status) : "running";
   out["message"] = outcome_.message;

@@ -15,6 +15,7 @@ struct RunDescription {
   double delta_t = 0;                     ///< s
   int timestep_start = 0;
   int number_of_timesteps = 0;
+  bool restarted = false;  ///< continues a saved state (timestep_start is its step)
 };
 
 /// One converged (or accepted) time step.

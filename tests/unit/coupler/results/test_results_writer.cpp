@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "coupler/results/results_writer.hpp"
+#include "tests/support/error_message.hpp"
 #include "tests/unit/coupler/results/results_fixture.hpp"
 
 namespace cocopp::test {
@@ -277,6 +278,81 @@ TEST_F(ResultsWriterTest, HandlesEmptyModelPartsEmptyResidualsAndBadUtf8) {
   EXPECT_EQ(f.dataset("residuals/count").values, std::vector<double>{0});
   EXPECT_TRUE(f.strings("/", "solver_names").empty());
   EXPECT_EQ(f.string("/", "message"), "solver said: \xef\xbf\xbd\xef\xbf\xbd broken");
+}
+
+// A restarted run continues the file after the saved step: rows after it (computed again now)
+// are dropped, the residual norms with them, and new rows follow.
+TEST_F(ResultsWriterTest, ContinuesAFileAfterAStepAndDropsTheRowsAfterIt) {
+  const auto file = dir_ / "run.h5";
+  write_run(file, 5, "");  // killed after step 5: still "running"
+  Interfaces interfaces = make_interfaces();
+  {
+    ResultsWriter writer(file, make_run(5), interfaces.x, interfaces.y, 3);
+    EXPECT_EQ(writer.steps_written(), 0);
+    for (int step = 4; step <= 6; ++step) {
+      fill(interfaces, 10 * step);  // other values than the first run's
+      StepRecord record = make_record(step);
+      record.residual_norms.push_back(7.0);  // one more iteration than the first run's
+      ++record.iterations;
+      writer.write_step(record, interfaces.x, interfaces.y);
+    }
+    EXPECT_EQ(writer.steps_written(), 3);
+    writer.close("completed", "done");
+  }
+  const ResultsReader f(file);
+  EXPECT_EQ(f.steps(), (std::vector<int>{1, 2, 3, 4, 5, 6}));
+  EXPECT_EQ(f.number("/", "restarted_after_step"), 3);
+  EXPECT_EQ(f.number("/", "steps_written"), 6);
+  EXPECT_EQ(f.string("/", "status"), "completed");
+  const auto offsets = f.dataset("residuals/offset").values;
+  const auto counts = f.dataset("residuals/count").values;
+  const auto norms = f.dataset("residuals/norms").values;
+  ASSERT_EQ(offsets.size(), 6u);
+  for (std::size_t row = 0; row < 6; ++row) {
+    const int step = static_cast<int>(row) + 1;
+    const StepRecord expected = make_record(step);
+    const std::size_t count = expected.residual_norms.size() + (step > 3 ? 1 : 0);
+    EXPECT_EQ(counts[row], double(count)) << "step " << step;
+    if (row > 0) {
+      EXPECT_EQ(offsets[row], offsets[row - 1] + counts[row - 1]);
+    }
+    EXPECT_EQ(norms[std::size_t(offsets[row])], expected.residual_norms[0]) << "step " << step;
+  }
+  EXPECT_EQ(norms.size(), std::size_t(offsets[5] + counts[5]));
+  const auto pressure = f.dataset("y/inlet/pressure");
+  ASSERT_EQ(pressure.shape, (Shape{6, 2, 1}));
+  Interfaces check = make_interfaces();
+  for (int step = 1; step <= 6; ++step) {
+    fill(check, step > 3 ? 10 * step : step);
+    EXPECT_EQ(pressure.values[2 * std::size_t(step - 1)], check.y.values("inlet", "pressure")(0, 0))
+        << "step " << step;
+  }
+}
+
+TEST_F(ResultsWriterTest, ContinuingAFileThatDoesNotFitSaysWhy) {
+  const auto file = dir_ / "run.h5";
+  write_run(file, 3);
+  Interfaces interfaces = make_interfaces();
+  const auto message = [&](const std::filesystem::path& path, const RunDescription& run,
+                           const Interface& x, int step) {
+    return cocopp::testing::error_message<std::runtime_error>(
+        [&] { ResultsWriter writer(path, run, x, interfaces.y, step); });
+  };
+  const auto expect_in = [](const std::string& text, const std::string& part) {
+    EXPECT_NE(text.find(part), std::string::npos) << text;
+  };
+  expect_in(message(dir_ / "missing.h5", make_run(3), interfaces.x, 2), "it is not there");
+  expect_in(message(file, make_run(3), interfaces.x, 4), "it holds steps 1 to 3");
+  RunDescription other = make_run(3);
+  other.delta_t = 0.02;
+  expect_in(message(file, other, interfaces.x, 2), "delta_t");
+  const Interface more_points({{model_part("wall", 5, 0.0), {"displacement"}},
+                               {model_part("inlet", 2, -0.01), {"displacement"}}});
+  expect_in(message(file, make_run(3), more_points, 2),
+            "x/wall/displacement does not have the layout");
+  // The file is untouched by the failed attempts.
+  EXPECT_EQ(ResultsReader(file).steps(), (std::vector<int>{1, 2, 3}));
+  EXPECT_EQ(ResultsReader(file).string("/", "status"), "completed");
 }
 
 }  // namespace
