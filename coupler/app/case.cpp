@@ -67,9 +67,44 @@ void check_own_working_directories(const std::vector<Settings>& wrappers) {
                           "channel to the coupler (pipes or message files) and its log");
 }
 
+/// Reads the state a restarted run continues from and moves the run's start to its step; the
+/// run's end stays where the case puts it.
+void prepare_restart(Case& c, bool restart, const Settings& settings) {
+  const int case_start = c.run.timestep_start;
+  if (!restart && case_start == 0) return;
+  const std::string why = restart
+                              ? "cocopp run --restart continues from it"
+                              : fmt::format(
+                                    "{}: settings.timestep_start is {}: the run continues from the "
+                                    "state saved after that step",
+                                    settings.where("timestep_start"), case_start);
+  if (!std::filesystem::exists(c.state_file()))
+    throw std::runtime_error(fmt::format(
+        "cannot restart: there is no state file {} ({}). A run saves it at its end and every "
+        "settings.state_interval steps; {}",
+        c.state_file().string(), why,
+        restart ? "run the case without --restart first"
+                : "set timestep_start to 0 to run from the start"));
+  SavedState saved = read_state_file(c.state_file());
+  if (!restart && saved.step != case_start)
+    throw std::runtime_error(
+        fmt::format("cannot restart after step {}: the state file {} holds step {} ({}); set "
+                    "timestep_start to {}, or run with --restart",
+                    case_start, c.state_file().string(), saved.step, why, saved.step));
+  const int end = case_start + c.run.number_of_timesteps;
+  if (saved.step >= end)
+    throw std::runtime_error(fmt::format(
+        "nothing to restart: the state file {} is at step {} and the case ends at step {} "
+        "(t = {:g} s): raise settings.number_of_timesteps or settings.end_time to go on",
+        c.state_file().string(), saved.step, end, end * c.run.delta_t));
+  c.run.timestep_start = saved.step;
+  c.run.number_of_timesteps = end - saved.step;
+  c.restart = std::move(saved);
+}
+
 }  // namespace
 
-Case load_case(const std::filesystem::path& file) {
+Case load_case(const std::filesystem::path& file, bool restart) {
   Settings root = Settings::load_file(file);
   Case c;
   c.file = file;
@@ -79,6 +114,7 @@ Case load_case(const std::filesystem::path& file) {
       root.base_directory() / settings.get<std::string>("results_directory", "results");
   c.results_name = settings.get<std::string>("results_name", file.stem().string());
   c.state_interval = settings.get_int_in_range("state_interval", 0, 0);
+  prepare_restart(c, restart, settings);
 
   const Settings coupled = root.child("coupled_solver");
   c.coupled_solver_type = coupled.required<std::string>("type");

@@ -2,10 +2,12 @@
 // A case: the components a case file names, built and validated, not yet started.
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/case/settings.hpp"
 #include "coupler/coupled_solvers/coupled_solver.hpp"
+#include "coupler/results/state_file.hpp"
 #include "solver_wrappers/solver_wrapper.hpp"
 
 namespace cocopp {
@@ -19,11 +21,22 @@ struct Case {
   std::filesystem::path results_directory;
   std::string results_name;  ///< file stem of the HDF5 file and the JSON summary
   int state_interval = 0;    ///< also save the coupled-solver state every this many steps
+  /// A restarted run: the saved state it continues from (run.timestep_start is its step).
+  std::optional<SavedState> restart;
+  std::filesystem::path state_file() const {
+    return results_directory / (results_name + ".state.h5");
+  }
   double end_time() const { return run.delta_t * (run.timestep_start + run.number_of_timesteps); }
 };
 
 /// Read and validate a case file (YAML or JSON): every component is created, every key
 /// checked. Throws CaseError naming the file, line and key.
-Case load_case(const std::filesystem::path& file);
+///
+/// A restart continues a run from its saved state (<results>/<name>.state.h5): with `restart`
+/// from the step the state file holds, and with settings.timestep_start > 0 from that step
+/// (the state file must hold it). The run then ends where the case ends (timestep_start +
+/// number_of_timesteps, or end_time), and the solvers are created to start after the restart
+/// step. Throws std::runtime_error if there is no such state or nothing is left to run.
+Case load_case(const std::filesystem::path& file, bool restart = false);
 
 }  // namespace cocopp

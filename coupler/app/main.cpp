@@ -30,6 +30,11 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::ExistingFile);
   run->add_flag("-q,--quiet", options.quiet, "no progress line per time step");
+  run->add_flag("--restart", options.restart,
+                "continue a run from its saved state (<results_directory>/<name>.state.h5, "
+                "written at the end of a run and every settings.state_interval steps) up to the "
+                "case's end: the solvers restart from what they saved with it, the results file "
+                "is continued after the saved step (docs/results.md)");
 
   auto* check = app.add_subcommand(
       "check",

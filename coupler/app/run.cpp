@@ -38,7 +38,11 @@ void print_header(const Case& c) {
   fmt::print("  coupled solver : {}\n", c.coupled_solver->describe());
   for (std::size_t i = 0; i < c.solvers.size(); ++i)
     fmt::print("  solver {}       : {}\n", i + 1, c.solvers[i]->describe());
-  fmt::print("  results        : {}\n", (c.results_directory / c.results_name).string() + ".h5");
+  fmt::print("  results        : {}{}\n", (c.results_directory / c.results_name).string() + ".h5",
+             c.restart ? fmt::format(" (continued after step {})", c.restart->step) : "");
+  if (c.restart)
+    fmt::print("  restart        : after step {} (t = {:g} s) from {}\n", c.restart->step,
+               c.restart->time, c.state_file().string());
 }
 
 RunDescription describe_run(const Case& c) {
@@ -49,6 +53,7 @@ RunDescription describe_run(const Case& c) {
   d.delta_t = c.run.delta_t;
   d.timestep_start = c.run.timestep_start;
   d.number_of_timesteps = c.run.number_of_timesteps;
+  d.restarted = c.restart.has_value();
   return d;
 }
 
@@ -100,8 +105,14 @@ class Run {
     coupled.initialize(*case_.solvers[0], *case_.solvers[1]);
     fmt::print("  started        : {}, {}\n", case_.solvers[0]->started(),
                case_.solvers[1]->started());
-    writer_ = std::make_unique<ResultsWriter>(results_path(".h5"), describe_run(case_), coupled.x(),
-                                              coupled.y());
+    if (case_.restart) {
+      coupled.load_state(case_.restart->state);
+      writer_ = std::make_unique<ResultsWriter>(results_path(".h5"), describe_run(case_),
+                                                coupled.x(), coupled.y(), case_.restart->step);
+    } else {
+      writer_ = std::make_unique<ResultsWriter>(results_path(".h5"), describe_run(case_),
+                                                coupled.x(), coupled.y());
+    }
     const int first = case_.run.timestep_start + 1;
     const int last = case_.run.timestep_start + case_.run.number_of_timesteps;
     for (int step = first; step <= last; ++step) {
@@ -172,12 +183,14 @@ class Run {
 
   /// Between steps only: in the middle of a step the models hold half a step's columns.
   void save_state(int step) {
+    // The solvers first: a state file always has the solvers' restart data behind it.
+    case_.coupled_solver->save_solver_restarts(step);
     SavedState saved;
     saved.step = step;
     saved.time = step * case_.run.delta_t;
     saved.coupled_solver = case_.coupled_solver->describe();
     case_.coupled_solver->save_state(saved.state);
-    write_state_file(results_path(".state.h5"), saved);
+    write_state_file(case_.state_file(), saved);
     state_saved_ = true;
   }
 
@@ -245,7 +258,7 @@ RunReport run_case(const std::filesystem::path& case_file, const RunOptions& opt
   RunReport report;
   Case c;
   try {
-    c = load_case(case_file);
+    c = load_case(case_file, options.restart);
     for (const auto& solver : c.solvers) solver->check();
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());

@@ -9,7 +9,8 @@
 namespace cocopp {
 
 struct RunOptions {
-  bool quiet = false;  ///< no progress lines (header and summary are still printed)
+  bool quiet = false;    ///< no progress lines (header and summary are still printed)
+  bool restart = false;  ///< continue from the saved state (load_case's `restart`)
 };
 
 /// What a run of a case gives its caller (the command, cocopp bench): how it ended and its

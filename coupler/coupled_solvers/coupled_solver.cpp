@@ -178,6 +178,11 @@ void CoupledSolver::commit_step(StepRecord& record) {
   record.surrogate_iterations = own_iterations_;
 }
 
+void CoupledSolver::save_solver_restarts(int step) {
+  for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->save_restart(step); });
+  save_own_solver_restarts(step);
+}
+
 Eigen::VectorXd CoupledSolver::evaluate(const Eigen::VectorXd& x, int step, int iteration) {
   x_.set_data(x);
   const Interface& y = timed_solve(0, x_);

@@ -47,6 +47,9 @@ class CoupledSolver {
   virtual void create_own_solvers(const RunSettings& /*run*/) {}
   /// Stop what create_own_solvers() started; called once, at the end of a run.
   virtual void finalize() {}
+  /// Between steps, before the state is saved: both solvers (and the coupled solver's own)
+  /// keep what a run restarted after `step` needs (SolverWrapper::save_restart).
+  void save_solver_restarts(int step);
   /// Advance, iterate to convergence, commit and write one time step.
   StepRecord solve_step(int step, double time);
   /// The two halves of solve_step(), for a coupled solver run inside another (a surrogate):
@@ -101,6 +104,8 @@ class CoupledSolver {
   virtual bool iterates() const { return true; }
   /// Degenerate situations handled since the last call, for the step's warnings.
   virtual std::vector<std::string> take_notes() { return {}; }
+  /// save_solver_restarts() for the coupled solver's own solvers.
+  virtual void save_own_solver_restarts(int /*step*/) {}
   /// The type's own part of the state.
   virtual void save_own_state(State&) const {}
   virtual void load_own_state(const State&) {}

@@ -73,6 +73,11 @@ class Iqnism : public CoupledSolver {
     for (auto& solver : surrogate_solvers_) solver->finalize();
   }
 
+  void save_own_solver_restarts(int step) override {
+    const OwnSolversStopwatch stopwatch(*this);
+    surrogate_->save_solver_restarts(step);
+  }
+
  protected:
   void on_initialized() override {
     if (!surrogate_) throw std::logic_error("iqnism: create_own_solvers() was not called");
