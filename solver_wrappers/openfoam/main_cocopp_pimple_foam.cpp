@@ -24,7 +24,8 @@ enum class Command : Foam::label {
   kFinalizeStep,
   kOutputStep,
   kFinalize,
-  kExit  ///< the coupler stopped before initializing
+  kExit,  ///< the coupler stopped before initializing
+  kSaveRestart
 };
 
 /// From the master to every other rank: a command and its numbers. Nothing in a serial run.
@@ -61,6 +62,11 @@ class MasterSolver : public sdk::Solver {
   void output_step() override {
     broadcast(Command::kOutputStep);
     solver_.output_step();
+  }
+  bool can_restart() const override { return solver_.can_restart(); }
+  void save_restart(std::int32_t step) override {
+    broadcast(Command::kSaveRestart, {static_cast<double>(step)});
+    solver_.save_restart(step);
   }
   void finalize() override {
     broadcast(Command::kFinalize);
@@ -106,6 +112,9 @@ void follow_master(PimpleFoamSolver& solver) {
         break;
       case Command::kOutputStep:
         solver.output_step();
+        break;
+      case Command::kSaveRestart:
+        solver.save_restart(static_cast<std::int32_t>(numbers.at(0)));
         break;
       case Command::kFinalize:
         solver.finalize();

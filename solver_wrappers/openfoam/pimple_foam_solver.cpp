@@ -401,6 +401,16 @@ void PimpleFoamSolver::finalize_step() {
   });
 }
 
+void PimpleFoamSolver::save_restart(std::int32_t step) {
+  reporting_foam_errors([&] {
+    if (run_time_->timeIndex() != step)
+      FatalErrorInFunction << "the coupler asks for the restart data of step " << step
+                           << " but the solver is at time index " << run_time_->timeIndex()
+                           << exit(FatalError);
+    run_time_->writeNow();  // the fields and the moved mesh, for a restart from this time
+  });
+}
+
 void PimpleFoamSolver::finalize() {
   reporting_foam_errors([&] {
     // pimpleFoam's last runTime.run(): the function objects of the last step, then their end.

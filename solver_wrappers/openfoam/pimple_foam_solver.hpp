@@ -9,7 +9,8 @@
 // state at the start of the step: the solution fields (every registered field that OpenFOAM
 // writes) and the mesh points are put back first, so repeated iterations do not drift and the
 // first one is exactly pimpleFoam's time step. Committing a step (finalize_step) writes the
-// fields when controlDict says so.
+// fields when controlDict says so; save_restart (the coupler saves its state) writes them now,
+// and a run restarted after step n starts from the time directory of n * delta_t.
 //
 // Interface, per patch P of `-patches`: model part `P_points` (the patch points, ids = mesh
 // point labels; input `displacement`) and `P_faces` (the face centres, ids = mesh face labels;
@@ -61,6 +62,10 @@ class PimpleFoamSolver : public sdk::Solver {
   std::vector<double> solve(const std::vector<double>& input) override;
   void finalize_step() override;
   void finalize() override;
+  /// A restart starts from the time directory of its step (start_at_coupler_step), which
+  /// save_restart writes whatever controlDict's writeControl says.
+  bool can_restart() const override { return true; }
+  void save_restart(std::int32_t step) override;
 
  private:
   /// What pimpleFoam creates before its time loop (createTime, the mesh, createFields, ...).

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 
 #include "tests/integration/run_helpers.hpp"
 
@@ -86,6 +87,39 @@ TEST(OpenFoamWedgeExample, CouplesTheWedgeToTheTubeStructure) {
   }
   EXPECT_GT(largest, 1e-6);  // the pulse widens the tube near the inlet (m)
   fs::remove_all(dir);
+}
+
+// A restart (cocopp run --restart): 5 steps, then 5 more from the saved state, against 10
+// uninterrupted steps. cocoppPimpleFoam writes its time directory when the coupler saves its
+// state and starts from it; the tube structure reads its restart file. The runs agree to
+// far below the coupling tolerance (relative 1e-6 per step).
+TEST(OpenFoamWedgeExample, ARestartedRunEqualsTheUninterruptedOne) {
+  const fs::path whole = prepared_example("openfoam_wedge_whole", "case.yaml");
+  const auto reference = run_cocopp("run --quiet " + (whole / "case.yaml").string());
+  ASSERT_EQ(reference.exit_code, 0) << reference.output;
+  const fs::path split = prepared_example("openfoam_wedge_split", "case.yaml");
+  edit(split / "case.yaml", "number_of_timesteps: 10", "number_of_timesteps: 5");
+  const auto first = run_cocopp("run --quiet " + (split / "case.yaml").string());
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  EXPECT_TRUE(fs::is_directory(split / "fluid" / "0.0005")) << "the time of the saved state";
+  edit(split / "case.yaml", "number_of_timesteps: 5", "number_of_timesteps: 10");
+  const auto second = run_cocopp("run --restart " + (split / "case.yaml").string());
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  EXPECT_NE(second.output.find("restart        : after step 5"), std::string::npos)
+      << second.output;
+  const auto a = read_dataset(whole / "results" / "case.h5", "x/wall_points/displacement");
+  const auto b = read_dataset(split / "results" / "case.h5", "x/wall_points/displacement");
+  ASSERT_EQ(a.size(), b.size());
+  double largest = 0.0, difference = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    largest = std::max(largest, std::abs(a[i]));
+    difference = std::max(difference, std::abs(a[i] - b[i]));
+  }
+  std::cout << "restarted wedge: largest difference " << difference << " m of " << largest
+            << " m\n";
+  EXPECT_LT(difference, 1e-6 * largest);
+  fs::remove_all(whole);
+  fs::remove_all(split);
 }
 
 // case_surrogate.yaml: the same wedge coupled by IQN-ILSM with the 1D tube as the surrogate,
