@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "core/case/suggest.hpp"
+#include "core/data/restart_file.hpp"
 #include "solver_wrappers/calculix/ccx_run.hpp"
 #include "solver_wrappers/calculix/dat_file.hpp"
 #include "solver_wrappers/process/child_process.hpp"
@@ -105,10 +106,6 @@ CalculixSolverWrapper::CalculixSolverWrapper(const Settings& settings, const Run
   state_reset_where_ =
       settings.has("state_reset") ? settings.where("state_reset") : settings.where();
   log_file_ = working_directory_ / settings.get<std::string>("log_file", name_ + ".log");
-  if (run.timestep_start != 0)
-    settings.fail("type",
-                  "the calculix wrapper starts at time step 0 (restarting a coupled run "
-                  "from a saved state is not supported yet)");
 }
 
 CalculixSolverWrapper::~CalculixSolverWrapper() = default;
@@ -147,6 +144,58 @@ void CalculixSolverWrapper::initialize() {
   write_lines(model, deck_->model_definition());
   if (!model.flush()) fail("cannot write " + file(kModelFile).string());
   std::filesystem::remove(file(kConvergedRestart));
+  if (run_.timestep_start > 0) restore(run_.timestep_start);
+}
+
+// What a restart after `step` needs besides the deck: the interface displacement (the faces
+// of an NLGEOM model follow it, the coupler starts from it) and the committed ccx state: the
+// converged restart file, or (replay) the loads of every committed step, which stay in the
+// working directory anyway.
+void CalculixSolverWrapper::save_restart(int step) {
+  const RowMatrix u = output_interface_.values(node_set_name_, "displacement");
+  write_restart_file(file(restart_file_name(name_, step).string()), name_, step,
+                     {{"displacement", Eigen::Map<const Eigen::VectorXd>(u.data(), u.size())}});
+  if (state_reset_ == StateReset::kRestart && has_converged_restart_)
+    std::filesystem::copy_file(file(kConvergedRestart), saved_restart(step),
+                               std::filesystem::copy_options::overwrite_existing);
+}
+
+void CalculixSolverWrapper::restore(int step) {
+  const std::filesystem::path data_file = file(restart_file_name(name_, step).string());
+  auto u = output_interface_.values(node_set_name_, "displacement");
+  try {
+    const Eigen::VectorXd saved = restart_array(read_restart_file(data_file, name_, step),
+                                                "displacement", u.size(), data_file);
+    u = Eigen::Map<const RowMatrix>(saved.data(), u.rows(), u.cols());
+  } catch (const std::runtime_error& e) {
+    fail(fmt::format("solver '{}' cannot restart after time step {}: {}", name_, step, e.what()));
+  }
+  step_ = step;
+  if (deck_->nonlinear_geometry()) move_faces_to_converged_state();
+  if (state_reset_ == StateReset::kReplay) {
+    for (int committed = 1; committed <= step; ++committed) {
+      const std::string loads = fmt::format("cocopp_loads_step{:05d}.inp", committed);
+      if (!std::filesystem::exists(file(loads)))
+        fail(
+            fmt::format("solver '{}' cannot restart after time step {} (state_reset: replay): "
+                        "the loads of step {}, {}, are gone",
+                        name_, step, committed, file(loads).string()));
+      committed_loads_.push_back(loads);
+    }
+    return;
+  }
+  if (!std::filesystem::exists(saved_restart(step)))
+    fail(
+        fmt::format("solver '{}' cannot restart after time step {}: its ccx restart file {} is "
+                    "not there (saved with the coupler's state)",
+                    name_, step, saved_restart(step).string()));
+  std::filesystem::copy_file(saved_restart(step), file(kConvergedRestart),
+                             std::filesystem::copy_options::overwrite_existing);
+  has_converged_restart_ = true;
+}
+
+std::filesystem::path CalculixSolverWrapper::saved_restart(int step) const {
+  return file(fmt::format("restart/{}_{:06d}.rout", name_, step));
 }
 
 void CalculixSolverWrapper::read_deck() {

@@ -65,6 +65,7 @@ class CalculixSolverWrapper : public SolverWrapper {
   const Interface& solve(const Interface& input) override;
   void finalize_step() override;
   void output_step() override;
+  void save_restart(int step) override;
   void finalize() override {}
 
   const Timing& last_timing() const { return last_timing_; }
@@ -81,6 +82,9 @@ class CalculixSolverWrapper : public SolverWrapper {
   void write_loads(const Interface& input) const;
   void run_ccx();
   void move_faces_to_converged_state();
+  /// A restarted run: the state save_restart(step) kept.
+  void restore(int step);
+  std::filesystem::path saved_restart(int step) const;
   [[noreturn]] void fail(const std::string& message) const;
   std::string position() const;
   std::filesystem::path file(const std::string& name) const { return working_directory_ / name; }

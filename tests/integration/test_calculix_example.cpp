@@ -3,7 +3,7 @@
 // the 1D tube structure made equivalent to the CalculiX wall (equivalent_tube/: the thick
 // wall's Lame stiffness, the trapezoidal rule) and against the thin-ring tube structure of
 // examples/tube/flow_structure; and case_axisymmetric.yaml (the wall as CAX8) against the
-// sector. Needs ccx.
+// sector; and a restarted run against an uninterrupted one. Needs ccx.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -87,4 +87,52 @@ TEST(CalculixExample, TubeWallInCalculixFollowsTheEquivalentTubeStructure) {
   fs::remove_all(calculix);
   fs::remove_all(equivalent);
   fs::remove_all(thin_ring);
+}
+
+namespace {
+
+// A restart of the CalculiX tube: half the steps, then the rest with --restart, against an
+// uninterrupted run, with the wall's state reset by ccx restart files
+// (the example's default) and by replaying the committed steps. The calculix wrapper keeps the
+// committed restart file and the interface displacement with the coupler's state; ccx then
+// continues from the same restart file as it does every step, so the two runs agree to the
+// last digit of ccx's output.
+void expect_restart_equals_uninterrupted_run(const std::string& state_reset, int steps) {
+  const auto prepare = [&](const std::string& copy, int steps) {
+    const fs::path directory = copy_example("tube/flow_calculix", copy);
+    edit(directory / "case.yaml", "number_of_timesteps: 100",
+         "number_of_timesteps: " + std::to_string(steps));
+    edit(directory / "case.yaml", "save_results: false",
+         "save_results: false\n      state_reset: " + state_reset);
+    return directory;
+  };
+  const fs::path whole = prepare("calculix_whole_" + state_reset, steps);
+  const CommandResult reference = run_cocopp("run --quiet " + (whole / "case.yaml").string());
+  ASSERT_EQ(reference.exit_code, 0) << reference.output;
+  const fs::path split = prepare("calculix_split_" + state_reset, steps / 2);
+  const CommandResult first = run_cocopp("run --quiet " + (split / "case.yaml").string());
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  edit(split / "case.yaml", "number_of_timesteps: " + std::to_string(steps / 2),
+       "number_of_timesteps: " + std::to_string(steps));
+  const CommandResult second = run_cocopp("run --restart " + (split / "case.yaml").string());
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  EXPECT_NE(second.output.find("restart        : after step " + std::to_string(steps / 2)),
+            std::string::npos)
+      << second.output;
+  const fs::path a = whole / "results" / "case.h5", b = split / "results" / "case.h5";
+  EXPECT_EQ(read_dataset(a, "steps/iterations"), read_dataset(b, "steps/iterations"));
+  EXPECT_EQ(read_dataset(a, "x/wall/displacement"), read_dataset(b, "x/wall/displacement"));
+  fs::remove_all(whole);
+  fs::remove_all(split);
+}
+
+}  // namespace
+
+TEST(CalculixExample, ARestartedRunEqualsTheUninterruptedOneWithRestartFiles) {
+  expect_restart_equals_uninterrupted_run("restart", 10);
+}
+
+TEST(CalculixExample, ARestartedRunEqualsTheUninterruptedOneWithReplay) {
+  // Replay runs every committed step again in every iteration: 3 + 3 steps.
+  expect_restart_equals_uninterrupted_run("replay", 6);
 }
