@@ -136,6 +136,26 @@ TEST_F(Restart, AKilledRunContinuesFromItsLastSavedState) {
   EXPECT_EQ(read_dataset(results(dir_), "steps/step").size(), std::size_t(kSteps));
 }
 
+// IQN-ILSM: the surrogate's own solvers save and restart with the case's, its coupled solver
+// goes through the state file (surrogate/...): 50 + 50 steps equal 100 bit for bit.
+TEST_F(Restart, IqnIlsmRestartsItsSurrogateToo) {
+  const fs::path reference = copy_example("tube/surrogate", "restart_surrogate_reference");
+  const fs::path split = copy_example("tube/surrogate", "restart_surrogate");
+  const CommandResult whole = run_cocopp("run --quiet " + (reference / "case.yaml").string());
+  ASSERT_EQ(whole.exit_code, 0) << whole.output;
+  edit(split / "case.yaml", "number_of_timesteps: 100", "number_of_timesteps: 50");
+  const CommandResult first = run_cocopp("run --quiet " + (split / "case.yaml").string());
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  EXPECT_TRUE(fs::exists(split / "surrogate_flow" / "restart" / "tube_flow_000050.restart"));
+  edit(split / "case.yaml", "number_of_timesteps: 50", "number_of_timesteps: 100");
+  const CommandResult second = run_cocopp("run --restart " + (split / "case.yaml").string());
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  expect_same_results(results(reference), results(split));
+  if (HasFailure()) return;
+  fs::remove_all(reference);
+  fs::remove_all(split);
+}
+
 TEST_F(Restart, WhatCannotBeRestartedIsAClearError) {
   write_text(dir_ / "case.yaml", flow_structure_case(20, 0));
   const std::string case_file = (dir_ / "case.yaml").string();
