@@ -1,7 +1,10 @@
 #include "core/case/settings.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -29,6 +32,33 @@ std::string location(const std::filesystem::path& file, const YAML::Mark& mark) 
   return out;
 }
 
+/// What the YAML parser accepts but a case file must not have, each an error at its line:
+/// a key given twice (the parser keeps both and a lookup finds the first, so the second would
+/// be ignored silently) and a key that is not a plain name (a list or a mapping as a key).
+void check_keys(const YAML::Node& node, const std::filesystem::path& file,
+                const std::string& path) {
+  if (node.IsSequence()) {
+    for (std::size_t i = 0; i < node.size(); ++i)
+      check_keys(node[i], file, path + "[" + std::to_string(i) + "]");
+    return;
+  }
+  if (!node.IsMap()) return;
+  std::map<std::string, YAML::Mark> seen;
+  for (auto it = node.begin(); it != node.end(); ++it) {
+    const YAML::Node& key = it->first;
+    const std::string where = path.empty() ? "" : " in '" + path + "'";
+    if (!key.IsScalar())
+      throw CaseError(location(file, key.Mark()) + ": a key" + where +
+                      " is a list or a mapping: keys are plain names");
+    const auto [first, inserted] = seen.emplace(key.Scalar(), key.Mark());
+    if (!inserted)
+      throw CaseError(location(file, key.Mark()) + ": key '" + key.Scalar() + "'" + where +
+                      " is given twice (first at line " + std::to_string(first->second.line + 1) +
+                      "): only one of them would count; remove the other");
+    check_keys(it->second, file, path.empty() ? key.Scalar() : path + "." + key.Scalar());
+  }
+}
+
 }  // namespace
 
 /// Shared by all Settings of one file: which keys each mapping's readers asked for.
@@ -53,15 +83,23 @@ Settings Settings::load_file(const std::filesystem::path& file) {
 Settings Settings::load_string(const std::string& text, const std::string& file_name) {
   auto document = std::make_shared<Document>();
   document->file = file_name;
-  YAML::Node root;
+  std::vector<YAML::Node> documents;
   try {
-    root = YAML::Load(text);
+    documents = YAML::LoadAll(text);
   } catch (const YAML::Exception& e) {
     throw CaseError(location(file_name, e.mark) + ": syntax error: " + e.msg);
   }
+  const YAML::Node root = documents.empty() ? YAML::Node() : documents.front();
   if (!root.IsMap())
     throw CaseError(location(file_name, root.Mark()) +
                     ": the file must hold a mapping of keys (YAML) or an object (JSON)");
+  // Content after the first document (a second YAML document, text after the JSON object)
+  // would be ignored silently.
+  if (documents.size() > 1)
+    throw CaseError(location(file_name, documents[1].Mark()) +
+                    ": content after the end of the case (a second YAML document, or text "
+                    "after the JSON object): a case file holds one; remove it");
+  check_keys(root, file_name, "");
   return Settings(document, root, "");
 }
 
@@ -240,6 +278,20 @@ std::string checked_choice(const Settings& s, const std::string& key, const std:
 std::string Settings::required_choice(const std::string& key,
                                       const std::vector<std::string>& choices) const {
   return checked_choice(*this, key, required<std::string>(key), choices);
+}
+
+std::string Settings::get_name(const std::string& key, const std::string& default_value) const {
+  const std::string name = get<std::string>(key, default_value);
+  const bool plain =
+      !name.empty() && name.size() <= 100 && name.front() != '.' && name.front() != '-' &&
+      std::all_of(name.begin(), name.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+      });
+  if (!plain)
+    fail(key, "'" + name +
+                  "' is not a plain name: use letters, digits, '_', '-' and '.' (not first), at "
+                  "most 100 characters; it names files in the solver's working directory");
+  return name;
 }
 
 std::string Settings::get_choice(const std::string& key, const std::string& default_value,

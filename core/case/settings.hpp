@@ -60,6 +60,10 @@ class Settings {
                             int max = std::numeric_limits<int>::max()) const;
   int get_int_in_range(const std::string& key, int default_value, int min,
                        int max = std::numeric_limits<int>::max()) const;
+  /// A name that becomes part of file names (a solver's log, its restart files): letters,
+  /// digits, '_', '-' and '.', not starting with '.' or '-', at most 100 characters; anything
+  /// else (a path like "../x", a space, a control character) is an error at its line.
+  std::string get_name(const std::string& key, const std::string& default_value) const;
   /// One of `choices`, required or with a default; error with did-you-mean otherwise.
   std::string required_choice(const std::string& key,
                               const std::vector<std::string>& choices) const;

@@ -76,8 +76,7 @@ bool is_axisymmetric(const std::string& type) {
 
 CalculixSolverWrapper::CalculixSolverWrapper(const Settings& settings, const RunSettings& run)
     : run_(run) {
-  name_ = settings.get<std::string>("name", "calculix");
-  if (name_.empty()) settings.fail("name", "must not be empty");
+  name_ = settings.get_name("name", "calculix");
   working_directory_ = std::filesystem::absolute(
                            run.case_directory / settings.required<std::string>("working_directory"))
                            .lexically_normal();

@@ -31,7 +31,7 @@ class MappedSolverWrapper : public SolverWrapper {
  public:
   MappedSolverWrapper(const Settings& settings, const RunSettings& run)
       : inner_(SolverWrapperRegistry::instance().create(settings.child("solver_wrapper"), run)),
-        name_(settings.get<std::string>("name", inner_->name())),
+        name_(settings.get_name("name", inner_->name())),
         input_settings_(settings.child("input_mapper")),
         output_settings_(settings.child("output_mapper")),
         rebuild_(settings.get_choice("rebuild", "never", {"never", "time_step", "iteration"})),

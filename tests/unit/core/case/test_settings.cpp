@@ -110,6 +110,53 @@ TEST(Settings, SyntaxErrorNamesTheLine) {
   EXPECT_NE(message.find("syntax error"), std::string::npos) << message;
 }
 
+// Issue 17, defect 8: input the parser accepts but would ignore silently.
+TEST(Settings, AKeyGivenTwiceIsAnErrorAtItsSecondLine) {
+  const std::string message = error_of([] {
+    Settings::load_string("settings:\n  delta_t: 1\n  number_of_timesteps: 2\n  delta_t: 3\n",
+                          "twice.yaml");
+  });
+  EXPECT_NE(message.find("twice.yaml:4:3: key 'delta_t' in 'settings' is given twice (first at "
+                         "line 2)"),
+            std::string::npos)
+      << message;
+  const std::string in_list =
+      error_of([] { Settings::load_string("{\"a\": [{\"b\": 1, \"b\": 2}]}", "twice.json"); });
+  EXPECT_NE(in_list.find("key 'b' in 'a[0]' is given twice"), std::string::npos) << in_list;
+}
+
+TEST(Settings, ContentAfterTheDocumentIsAnError) {
+  const std::string second = error_of([] { Settings::load_string("a: 1\n---\nb: 2\n", "c.yaml"); });
+  EXPECT_NE(second.find("c.yaml:3:1: content after the end of the case"), std::string::npos)
+      << second;
+  const std::string after_json =
+      error_of([] { Settings::load_string("{\"a\": 1}\n{\"b\": 2}\n", "c.json"); });
+  EXPECT_NE(after_json.find("c.json:2:1: content after the end of the case"), std::string::npos)
+      << after_json;
+}
+
+TEST(Settings, AKeyThatIsNotANameIsAnErrorWithItsLine) {
+  const std::string message =
+      error_of([] { Settings::load_string("a:\n  ? [1, 2]\n  : 3\n", "c.yaml"); });
+  EXPECT_NE(message.find("c.yaml:2:5: a key in 'a' is a list or a mapping"), std::string::npos)
+      << message;
+}
+
+// Issue 17, defect 10: a name that becomes part of file names must not be a path.
+TEST(Settings, NamesThatWouldBePathsAreRejected) {
+  const Settings root =
+      Settings::load_string("a: flow-1.x\nb: ../../x\nc: .hidden\nd: 'with space'\n", "c.yaml");
+  EXPECT_EQ(root.get_name("a", "z"), "flow-1.x");
+  EXPECT_EQ(root.get_name("missing", "structure"), "structure");
+  for (const char* key : {"b", "c", "d"})
+    EXPECT_NE(error_of([&] { root.get_name(key, "z"); }).find("is not a plain name"),
+              std::string::npos)
+        << key;
+  EXPECT_NE(error_of([&] { root.get_name("b", "z"); }).find("c.yaml:2:4: 'b': '../../x'"),
+            std::string::npos)
+      << error_of([&] { root.get_name("b", "z"); });
+}
+
 TEST(Settings, NonFiniteNumbersAreRejected) {
   const Settings root = Settings::load_string("omega: .nan\n", "c.yaml");
   EXPECT_NE(error_of([&] { root.required<double>("omega"); }).find("finite"), std::string::npos);
