@@ -1,6 +1,7 @@
 #include "core/protocol/file_transport.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -18,7 +19,9 @@ std::string system_error_text(const std::string& what, int error) {
 }
 
 void write_file(const std::filesystem::path& path, const std::vector<std::uint8_t>& bytes) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+  // A new file, never through a link planted at the name (it would overwrite the target).
+  ::unlink(path.c_str());
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
   if (fd < 0) throw TransportError(system_error_text("cannot create " + path.string(), errno));
   std::size_t written = 0;
   while (written < bytes.size()) {
@@ -34,12 +37,30 @@ void write_file(const std::filesystem::path& path, const std::vector<std::uint8_
   ::close(fd);
 }
 
-/// The whole file, or false if it does not exist (yet).
-bool read_file(const std::filesystem::path& path, std::vector<std::uint8_t>& bytes) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+/// The whole file, or false if it does not exist (yet). Only a regular file of at most
+/// `max_bytes` is read: opened without blocking and without following a link, so that a FIFO,
+/// a device or a link planted at a message's name is an error instead of a wait for ever or a
+/// read of another file, and a huge file is refused before it is read.
+bool read_file(const std::filesystem::path& path, std::vector<std::uint8_t>& bytes,
+               std::size_t max_bytes) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOFOLLOW);
   if (fd < 0) {
     if (errno == ENOENT) return false;
     throw TransportError(system_error_text("cannot open " + path.string(), errno));
+  }
+  struct stat status {};
+  if (::fstat(fd, &status) != 0 || !S_ISREG(status.st_mode)) {
+    ::close(fd);
+    throw TransportError(path.string() +
+                         " is not a regular file (a FIFO, device or other "
+                         "file planted at the message's name?)");
+  }
+  if (static_cast<std::uint64_t>(status.st_size) > max_bytes) {
+    ::close(fd);
+    throw ProtocolError(path.string() + " holds a frame of " +
+                        std::to_string(status.st_size - kLengthPrefixBytes) +
+                        " bytes; the largest this channel takes now is " +
+                        std::to_string(max_bytes - kLengthPrefixBytes) + " bytes");
   }
   bytes.clear();
   std::uint8_t buffer[1 << 16];
@@ -128,7 +149,7 @@ Frame FileTransport::receive(double timeout_seconds, const AliveCheck& still_ali
   const Deadline deadline(timeout_seconds);
   auto pause = std::chrono::milliseconds(1);
   std::vector<std::uint8_t> bytes;
-  while (!read_file(path, bytes)) {
+  while (!read_file(path, bytes, kLengthPrefixBytes + max_payload())) {
     if (deadline.expired())
       throw TransportTimeout("timed out waiting for " + path.string() + " from the " + peer_);
     if (still_alive_check) still_alive_check();

@@ -1,5 +1,7 @@
 #include "core/protocol/messages.hpp"
 
+#include <algorithm>
+
 namespace cocopp::protocol {
 
 namespace {
@@ -203,6 +205,17 @@ std::string decode_text(const Frame& frame, MessageType type) {
   return message;
 }
 }  // namespace
+
+std::string printable_text(const std::string& text, std::size_t max_bytes) {
+  std::string out = text.substr(0, std::min(text.size(), max_bytes));
+  for (char& c : out) {
+    const auto byte = static_cast<unsigned char>(c);
+    if ((byte < 0x20 && c != '\n' && c != '\t') || byte == 0x7f) c = '?';
+  }
+  if (text.size() > max_bytes)
+    out += "... [" + std::to_string(text.size() - max_bytes) + " more bytes]";
+  return out;
+}
 
 std::string decode_error(const Frame& frame) {
   return decode_text(frame, MessageType::kError);

@@ -77,6 +77,12 @@ Hello decode_hello(const Frame& frame);
 sdk::InterfaceDescription decode_interface(const Frame& frame);
 std::vector<double> decode_data(const Frame& frame);
 std::string decode_error(const Frame& frame);
+/// Longest ERROR or REJECTED text a solver may send once the interface is known (bytes).
+constexpr std::size_t kMaxReceivedText = 64 * 1024;
+/// A solver's text as it may reach a terminal and a results file: control characters (other
+/// than newline and tab) replaced by '?', so that no escape sequence reaches the terminal,
+/// and cut after `max_bytes` with a note of how much was left out.
+std::string printable_text(const std::string& text, std::size_t max_bytes = 4096);
 std::string decode_rejected(const Frame& frame);
 
 }  // namespace cocopp::protocol

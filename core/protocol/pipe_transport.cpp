@@ -6,6 +6,7 @@
 #include <sys/uio.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <csignal>
 #include <cstring>
@@ -181,8 +182,16 @@ Frame PipeTransport::receive(double timeout_seconds, const AliveCheck& still_ali
   const Deadline deadline(timeout_seconds);
   std::uint8_t prefix[kLengthPrefixBytes];
   read_exactly(prefix, sizeof prefix, deadline, still_alive_check);
-  Frame frame(decode_length_prefix(prefix));
-  read_exactly(frame.data(), frame.size(), deadline, still_alive_check);
+  const std::size_t length = decode_length_prefix(prefix);
+  check_payload_size(length);
+  // The buffer grows with what arrives: a length that is a lie costs no memory up front.
+  constexpr std::size_t kChunk = std::size_t(1) << 20;
+  Frame frame;
+  while (frame.size() < length) {
+    const std::size_t start = frame.size();
+    frame.resize(std::min(length, start + kChunk));
+    read_exactly(frame.data() + start, frame.size() - start, deadline, still_alive_check);
+  }
   return frame;
 }
 

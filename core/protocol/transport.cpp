@@ -51,6 +51,13 @@ std::chrono::milliseconds Deadline::next_slice() const {
   return std::clamp(remaining, std::chrono::milliseconds(0), kAliveCheckInterval);
 }
 
+void Transport::check_payload_size(std::size_t bytes) const {
+  if (bytes > max_payload_)
+    throw ProtocolError("a frame of " + std::to_string(bytes) +
+                        " bytes was announced; the largest this channel takes now is " +
+                        std::to_string(max_payload_) + " bytes (corrupt stream?)");
+}
+
 std::string seconds_text(double seconds) {
   std::ostringstream out;
   out << seconds << " s";

@@ -66,8 +66,22 @@ class Transport {
                     const AliveCheck& still_alive_check) = 0;
   void send(const Frame& frame) { send(frame, kWaitForever, nullptr); }
 
-  /// The next frame; throws TransportTimeout, PeerClosed, ProtocolError (corrupt frame).
+  /// The next frame; throws TransportTimeout, PeerClosed, ProtocolError (corrupt frame, or
+  /// one longer than max_payload()).
   virtual Frame receive(double timeout_seconds, const AliveCheck& still_alive_check) = 0;
+
+  /// The longest payload receive() accepts (kMaxPayloadBytes until set): once the interface
+  /// is known, the coupler bounds every reply by what it can need, so that a lying length
+  /// prefix or a huge message file costs neither memory nor time.
+  void set_max_payload(std::size_t bytes) { max_payload_ = bytes; }
+  std::size_t max_payload() const { return max_payload_; }
+
+ protected:
+  /// Throws ProtocolError if a frame of `bytes` exceeds max_payload().
+  void check_payload_size(std::size_t bytes) const;
+
+ private:
+  std::size_t max_payload_ = kMaxPayloadBytes;
 };
 
 /// Coupler side, before launching the solver: create the channel in `directory` (the FIFOs,

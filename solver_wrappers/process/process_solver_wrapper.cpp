@@ -111,9 +111,10 @@ auto ProcessSolverWrapper::call(const std::string& request_name, const Frame* re
     if (request != nullptr) channel_->send(*request, timeout_seconds, alive_check());
     const Frame reply = channel_->receive(timeout_seconds, alive_check());
     const MessageType type = protocol::message_type(reply);
-    if (type == MessageType::kError) throw ReportedError(protocol::decode_error(reply));
+    if (type == MessageType::kError)
+      throw ReportedError(protocol::printable_text(protocol::decode_error(reply)));
     if (type == MessageType::kRejected && expected_reply == MessageType::kData)
-      throw RejectedInput(protocol::decode_rejected(reply));
+      throw RejectedInput(protocol::printable_text(protocol::decode_rejected(reply)));
     if (type != expected_reply)
       throw protocol::ProtocolError("answered " + request_name + " with " +
                                     protocol::message_name(type) + " instead of " +
@@ -125,8 +126,7 @@ auto ProcessSolverWrapper::call(const std::string& request_name, const Frame* re
 ProcessSolverWrapper::ProcessSolverWrapper(const Settings& settings, const RunSettings& run,
                                            std::optional<DefaultCommand> default_command)
     : run_(run) {
-  name_ = settings.get<std::string>("name", settings.required<std::string>("type"));
-  if (name_.empty()) settings.fail("name", "must not be empty");
+  name_ = settings.get_name("name", settings.required<std::string>("type"));
   const std::filesystem::path directory = settings.required<std::string>("working_directory");
   working_directory_ = std::filesystem::absolute(run.case_directory / directory).lexically_normal();
   working_directory_where_ = settings.where("working_directory");
@@ -218,6 +218,10 @@ void ProcessSolverWrapper::initialize() {
   const Frame request = protocol::encode_initialize({run_.delta_t, run_.timestep_start});
   build_interfaces(
       call("initialize", &request, MessageType::kInterface, timeout_, protocol::decode_interface));
+  // From now on every reply is DATA of the output interface, OK, or a text: a longer frame
+  // is a corrupt stream, refused before it is read.
+  const auto data_frame = 1 + 8 + 8 * static_cast<std::size_t>(output_interface_.size());
+  channel_->set_max_payload(std::max(data_frame, 1 + 4 + protocol::kMaxReceivedText));
 }
 
 void ProcessSolverWrapper::launch() {
@@ -382,7 +386,7 @@ std::string ProcessSolverWrapper::at_position(const std::string& request_name) c
 
 std::string ProcessSolverWrapper::log_tail() const {
   const std::string tail = read_last_lines(log_file_, kLogTailLines);
-  return tail.empty() ? "(the log is empty)" : tail;
+  return tail.empty() ? "(the log is empty)" : protocol::printable_text(tail, 16 * 1024);
 }
 
 }  // namespace cocopp

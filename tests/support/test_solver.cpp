@@ -42,6 +42,7 @@ struct Options {
   std::string fail = "none";
   int fail_step = 1;
   int fail_iteration = 1;
+  std::size_t error_bytes = 0;  ///< > 0: the error text is this long, with escape sequences
 };
 
 Options read_options(const std::string& file) {
@@ -58,6 +59,8 @@ Options read_options(const std::string& file) {
       in >> options.fail_step;
     else if (key == "fail_iteration")
       in >> options.fail_iteration;
+    else if (key == "error_bytes")
+      in >> options.error_bytes;
     else
       throw std::runtime_error("test solver: " + file + ": unknown key '" + key + "'");
     if (!in) throw std::runtime_error("test solver: " + file + ": bad value for '" + key + "'");
@@ -136,6 +139,12 @@ class TestSolver : public cocopp::sdk::Solver {
     std::cout << "test solver: failing (" << options_.fail << ") at " << where << std::endl;
     if (options_.fail == "crash") std::raise(SIGSEGV);
     if (options_.fail == "exit") std::exit(3);
+    if (options_.fail == "error" && options_.error_bytes > 0) {
+      // A solver's text is untrusted: long, and with escape sequences for the terminal.
+      std::string text = "test solver: \x1b[2J requested long error at " + where + " ";
+      text.resize(options_.error_bytes, 'e');
+      throw std::runtime_error(text);
+    }
     if (options_.fail == "error")
       throw std::runtime_error("test solver: requested error at " + where);
     if (options_.fail == "reject")

@@ -1,4 +1,7 @@
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -207,6 +210,97 @@ TEST(FileTransportTest, ATruncatedMessageFileIsAProtocolError) {
   auto coupler = create_coupler_channel(TransportKind::kFile, directory.path());
   write_text(directory / "from_solver_00000001.msg", std::string("\x09\0\0\0\x83", 5));
   EXPECT_THROW(coupler->receive(1.0, nullptr), ProtocolError);
+}
+
+// Issue 17, defect 4: a length prefix above the channel's bound is refused at once, before a
+// byte of payload is allocated or awaited; frames within it, also large ones, cross whole.
+TEST_P(TransportTest, AFrameLongerThanTheBoundIsRefusedBeforeItIsRead) {
+  auto coupler = create_coupler_channel(GetParam(), channel_directory_.path());
+  auto solver = open_solver_channel(GetParam(), channel_directory_.path(), 10.0, nullptr);
+  coupler->connect(10.0, nullptr);
+  const auto values = ramp(300000);  // 2.4 MB: more than one read chunk of the pipe
+  coupler->set_max_payload(encode_data(values).size());
+  std::thread sender([&] { solver->send(encode_data(values)); });  // more than a pipe holds
+  EXPECT_EQ(decode_data(coupler->receive(10.0, nullptr)), values);
+  sender.join();
+  coupler->set_max_payload(100);
+  solver->send(encode_data(ramp(12)));  // 105 bytes
+  const auto start = Clock::now();
+  try {
+    coupler->receive(10.0, nullptr);
+    FAIL() << "no exception";
+  } catch (const ProtocolError& e) {
+    EXPECT_NE(std::string(e.what()).find("105"), std::string::npos) << e.what();
+  }
+  EXPECT_LT(seconds_since(start), 1.0);
+}
+
+// A lying length prefix (1 GiB announced, nothing follows) with the default bound: the wait
+// times out as for any missing message, and no gigabyte was allocated up front (the buffer
+// grows with what arrives): the process's peak resident memory grows by far less.
+TEST(PipeTransportTest, ALyingLengthPrefixCostsNoMemoryUpFront) {
+  TemporaryDirectory directory;
+  auto coupler = create_coupler_channel(TransportKind::kPipe, directory.path());
+  // The solver's ends, opened by hand: its read end (for connect) and its write end.
+  const int reader =
+      ::open((directory / PipeTransport::kToSolverFifo).c_str(), O_RDONLY | O_NONBLOCK);
+  const int fd = ::open((directory / PipeTransport::kFromSolverFifo).c_str(), O_WRONLY);
+  ASSERT_GE(reader, 0);
+  ASSERT_GE(fd, 0);
+  coupler->connect(10.0, nullptr);
+  const std::uint8_t prefix[4] = {0x00, 0x00, 0x00, 0x40};  // 2^30
+  ASSERT_EQ(::write(fd, prefix, 4), 4);
+  const auto peak_kib = [] {
+    rusage usage{};
+    ::getrusage(RUSAGE_SELF, &usage);
+    return usage.ru_maxrss;
+  };
+  const long before = peak_kib();
+  EXPECT_THROW(coupler->receive(0.3, nullptr), TransportTimeout);
+  EXPECT_LT(peak_kib() - before, 64 * 1024) << "KiB of peak memory grown by the wait";
+  ::close(fd);
+  ::close(reader);
+}
+
+// Issue 17, defects 4, 5 and 10: a FIFO planted at a reply's name is an error, not a wait for
+// ever; a reply file larger than the bound is refused unread; a link planted at a message's
+// temporary name is replaced, its target untouched.
+TEST(FileTransportTest, PlantedFifosHugeFilesAndLinksAreRefused) {
+  TemporaryDirectory directory;
+  auto coupler = create_coupler_channel(TransportKind::kFile, directory.path());
+  const auto reply = directory / "from_solver_00000001.msg";
+  ASSERT_EQ(::mkfifo(reply.c_str(), 0600), 0);
+  const auto start = Clock::now();
+  try {
+    coupler->receive(5.0, nullptr);
+    FAIL() << "no exception";
+  } catch (const TransportError& e) {
+    EXPECT_NE(std::string(e.what()).find("is not a regular file"), std::string::npos) << e.what();
+  }
+  EXPECT_LT(seconds_since(start), 1.0);
+  std::filesystem::remove(reply);
+  write_text(reply, std::string(2000, 'x'));
+  coupler->set_max_payload(1000);
+  try {
+    coupler->receive(5.0, nullptr);
+    FAIL() << "no exception";
+  } catch (const ProtocolError& e) {
+    EXPECT_NE(std::string(e.what()).find("holds a frame of 1996 bytes"), std::string::npos)
+        << e.what();
+  }
+  const auto target = directory / "precious.txt";
+  write_text(target, "keep me");
+  std::filesystem::create_symlink(target, directory / "to_solver_00000001.tmp");
+  coupler->send(encode_empty(MessageType::kStop));
+  EXPECT_EQ(cocopp::testing::read_text(target), "keep me");
+  EXPECT_TRUE(std::filesystem::is_regular_file(directory / "to_solver_00000001.msg"));
+}
+
+TEST(PrintableText, ControlCharactersAreReplacedAndLongTextsCut) {
+  EXPECT_EQ(printable_text("line 1\n\tline 2"), "line 1\n\tline 2");
+  EXPECT_EQ(printable_text("red \x1b[31m bell \x07 del \x7f"), "red ?[31m bell ? del ?");
+  EXPECT_EQ(printable_text(std::string(5000, 'a'), 4096),
+            std::string(4096, 'a') + "... [904 more bytes]");
 }
 
 }  // namespace

@@ -214,6 +214,29 @@ TEST_P(ProcessSolverWrapperTest, AReportedErrorIsRelayed) {
   expect_cleaned_up(wrapper);
 }
 
+// Issue 17, defects 4 and 10: a solver's error text reaches the user cut to a few kilobytes
+// and without control characters; one longer than any text the coupler accepts is refused
+// unread as a corrupt stream. Both end cleanly.
+TEST_P(ProcessSolverWrapperTest, LongErrorTextsAreCutAndStrippedOfControlCharacters) {
+  auto& wrapper = start("fail error\nfail_step 1\nerror_bytes 60000\n");
+  wrapper.initialize();
+  wrapper.initialize_step(1, 0.01);
+  const std::string message = solver_error_of([&] { wrapper.solve(wrapper.input_interface()); });
+  EXPECT_CONTAINS(message, "test solver: ?[2J requested long error at step 1 iteration 1");
+  EXPECT_CONTAINS(message, "more bytes]");
+  EXPECT_EQ(message.find('\x1b'), std::string::npos);
+  // The text (4 KiB), and the log tail (16 KiB) where the solver's stderr repeats it.
+  EXPECT_LT(message.size(), 24u * 1024);
+  expect_cleaned_up(wrapper);
+
+  auto& huge = start("fail error\nfail_step 1\nerror_bytes 1000000\n");
+  huge.initialize();
+  huge.initialize_step(1, 0.01);
+  const std::string refused = solver_error_of([&] { huge.solve(huge.input_interface()); });
+  EXPECT_CONTAINS(refused, "the largest this channel takes now is");
+  expect_cleaned_up(huge);
+}
+
 // A rejected input is no failure: the solver serves on and solves the next input.
 TEST_P(ProcessSolverWrapperTest, ARejectedInputIsRelayedAndTheSolverServesOn) {
   auto& wrapper = start("points 2\nfail reject\nfail_step 1\nfail_iteration 2\n");
