@@ -128,6 +128,9 @@ Case load_case(const std::filesystem::path& file, bool restart) {
                   std::to_string(wrappers.size()));
   check_own_working_directories(wrappers);
   for (const auto& w : wrappers)
+    if (const auto directory = working_directory_of(w))
+      c.working_directories.push_back(directory->first);
+  for (const auto& w : wrappers)
     c.solvers.push_back(SolverWrapperRegistry::instance().create(w, c.run));
   if (c.solvers[0]->name() == c.solvers[1]->name())
     wrappers[1].fail("name", "both solver wrappers are called '" + c.solvers[0]->name() +

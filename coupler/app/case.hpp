@@ -21,6 +21,8 @@ struct Case {
   std::filesystem::path results_directory;
   std::string results_name;  ///< file stem of the HDF5 file and the JSON summary
   int state_interval = 0;    ///< also save the coupled-solver state every this many steps
+  /// The solvers' working directories named in the case (the run locks them).
+  std::vector<std::filesystem::path> working_directories;
   /// A restarted run: the saved state it continues from (run.timestep_start is its step).
   std::optional<SavedState> restart;
   std::filesystem::path state_file() const {

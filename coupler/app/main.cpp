@@ -24,8 +24,9 @@ int main(int argc, char** argv) {
       "<results_directory>/<name>.h5 (HDF5, docs/results.md) and <name>.summary.json. Prints "
       "one progress line per time step (a * marks a step accepted at the iteration limit) and "
       "a timing summary. Exit code 0: completed (or stalled: some steps accepted at the iteration "
-      "limit); 1: the run stopped (divergence, solver "
-      "failure, interrupt; results so far are kept); 2: invalid case file.");
+      "limit); 1: the run stopped (divergence, solver failure, interrupt, results that cannot "
+      "be written; results so far are kept) or did not start (another run holds the case, the "
+      "results location cannot be used); 2: invalid case file or command line.");
   run->add_option("case", case_file, "case file (.yaml, .yml or .json)")
       ->required()
       ->check(CLI::ExistingFile);
@@ -65,7 +66,13 @@ int main(int argc, char** argv) {
 
   app.add_subcommand("components", "List the component types a case file can name.");
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version end here with 0; a command-line error is invalid input, exit 2,
+    // like an invalid case (CLI11's own codes, 105 and up, are not documented ones).
+    return app.exit(e) == 0 ? 0 : 2;
+  }
   if (*run) return cocopp::run_case(case_file, options).outcome.exit_code();
   if (*check) return cocopp::check_case(case_file);
   if (*bench) {

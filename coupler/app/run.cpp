@@ -9,6 +9,7 @@
 #include <numeric>
 
 #include "coupler/app/case.hpp"
+#include "coupler/app/case_lock.hpp"
 #include "coupler/results/results_writer.hpp"
 #include "coupler/results/run_summary.hpp"
 #include "coupler/results/state_file.hpp"
@@ -28,6 +29,18 @@ std::atomic<int> interrupt_signal{0};
 void on_interrupt(int signal) {
   interrupt_signal = signal;
   kill_all_children();
+}
+
+/// cocopp writes only files it creates: a link at a results file's name (planted, or made by
+/// hand) would make it overwrite the link's target.
+void check_results_files(const Case& c) {
+  for (const char* extension : {".h5", ".summary.json", ".state.h5"}) {
+    const auto file = c.results_directory / (c.results_name + extension);
+    if (std::filesystem::is_symlink(file))
+      throw std::runtime_error(file.string() +
+                               " is a symbolic link: cocopp writes only files it creates (it "
+                               "would overwrite the link's target); remove the link");
+  }
 }
 
 void print_header(const Case& c) {
@@ -210,14 +223,33 @@ class Run {
     return case_.results_directory / (case_.results_name + extension);
   }
 
-  void finish(const RunOutcome& outcome) {
+  /// Results that cannot be written (a disk that filled up, a directory that went away) end
+  /// the run as failed, with the reason; never an exception out of the run.
+  void note_write_failure(RunOutcome& outcome, const std::exception& error) const {
+    if (!outcome.message.empty()) {
+      outcome.message += "\n(and: " + std::string(error.what()) + ")";
+      return;
+    }
+    outcome = stopped(RunStatus::kFailed, error.what());
+    outcome.reason = "the results could not be written";
+  }
+
+  void finish(RunOutcome& outcome) {
     const double wall = std::chrono::duration<double>(Clock::now() - start_).count();
     const auto& solver_times = case_.coupled_solver->solver_time_total();
     const double own_solvers = case_.coupled_solver->own_solvers_time_total();
     const double coupler = wall - solver_times[0] - solver_times[1] - own_solvers;
-    if (writer_) writer_->close(to_string(outcome.status), outcome.message);
+    try {
+      if (writer_) writer_->close(to_string(outcome.status), outcome.message);
+    } catch (const std::exception& e) {
+      note_write_failure(outcome, e);
+    }
     summary_.finish(outcome, wall, {solver_times[0], solver_times[1]}, coupler);
-    summary_.write(results_path(".summary.json"));
+    try {
+      summary_.write(results_path(".summary.json"));
+    } catch (const std::exception& e) {
+      note_write_failure(outcome, e);
+    }
 
     const int steps = writer_ ? writer_->steps_written() : 0;
     fmt::print("\n{} after {} time step{} in {:.3f} s{}\n", to_string(outcome.status), steps,
@@ -265,6 +297,22 @@ RunReport run_case(const std::filesystem::path& case_file, const RunOptions& opt
     report.outcome.status = RunStatus::kInvalidCase;
     report.outcome.message = e.what();
     report.outcome.reason = "invalid case";
+    return report;
+  }
+  // Before anything is written or started: one run of a case at a time, and a results
+  // directory that can be written.
+  std::unique_ptr<CaseLock> lock;
+  try {
+    check_results_files(c);
+    std::vector<std::filesystem::path> lock_files{c.results_directory / (c.results_name + ".lock")};
+    for (const auto& directory : c.working_directories)
+      lock_files.push_back(directory / ".cocopp.lock");
+    lock = std::make_unique<CaseLock>(lock_files);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    report.outcome.status = RunStatus::kFailed;
+    report.outcome.message = e.what();
+    report.outcome.reason = "the case cannot be run now";
     return report;
   }
   print_header(c);

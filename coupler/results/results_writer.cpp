@@ -1,5 +1,7 @@
 #include "coupler/results/results_writer.hpp"
 
+#include <sys/statvfs.h>
+
 #include <algorithm>
 #include <cstdint>
 #include <ctime>
@@ -367,6 +369,7 @@ void ResultsWriter::write_step(const StepRecord& record, const Interface& x, con
   if (!is_open())
     throw std::logic_error("results file '" + path_.string() + "': write_step after close");
   check_step(record, x, y);
+  check_space(record, x, y);
   const QuietErrors quiet;
   try {
     write_interface(x_blocks_, x);
@@ -401,6 +404,27 @@ void ResultsWriter::check_step(const StepRecord& record, const Interface& x,
         "results file '" + path_.string() + "': step " + std::to_string(record.step) + " has " +
         std::to_string(record.solver_times.size()) + " solver times, expected one per solver (" +
         std::to_string(solver_count_) + ")");
+}
+
+// HDF5 leaves a file it could not finish writing (its metadata half updated) unreadable, and
+// with it every step flushed before. So a step is written only where the disk clearly has
+// room for it and for closing the file; otherwise the run stops with the file as it was.
+void ResultsWriter::check_space(const StepRecord& record, const Interface& x,
+                                const Interface& y) const {
+  struct statvfs disk {};
+  const auto directory = path_.has_parent_path() ? path_.parent_path() : ".";
+  if (::statvfs(directory.c_str(), &disk) != 0) return;  // nothing known: write and see
+  const std::uint64_t available = std::uint64_t(disk.f_bavail) * disk.f_frsize;
+  const std::uint64_t values = std::uint64_t(x.size() + y.size()) + record.residual_norms.size();
+  // Chunks may be allocated whole, and metadata grows with them: a generous multiple.
+  const std::uint64_t needed = 4 * 8 * (values + 16) + kClosingReserveBytes;
+  if (available < needed)
+    throw std::runtime_error("results file '" + path_.string() + "': the disk has " +
+                             std::to_string(available) + " bytes left, step " +
+                             std::to_string(record.step) + " and closing the file need about " +
+                             std::to_string(needed) +
+                             ": stopped before writing it, so that the steps written so far "
+                             "stay readable; free space and restart the run");
 }
 
 void ResultsWriter::write_interface(const std::vector<BlockSeries>& blocks,

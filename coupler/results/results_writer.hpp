@@ -80,6 +80,10 @@ class ResultsWriter {
   static Series create_series(hid_t group, const char* name, hid_t file_type,
                               std::vector<hsize_t> row_shape, const char* unit);
   void check_step(const StepRecord& record, const Interface& x, const Interface& y) const;
+  /// Throws std::runtime_error if the disk has no clear room for the step (see the .cpp).
+  void check_space(const StepRecord& record, const Interface& x, const Interface& y) const;
+  /// Room kept for closing the file (attributes, metadata flushed at close).
+  static constexpr std::uint64_t kClosingReserveBytes = 256 * 1024;
   void write_interface(const std::vector<BlockSeries>& blocks, const Interface& interface);
   void write_residuals(const StepRecord& record);
   void write_step_scalars(const StepRecord& record);

@@ -34,7 +34,9 @@ json ratio(double numerator, double denominator) {
 /// Writes all of `text` to a new file and fsyncs it, so the rename that follows publishes
 /// complete contents even if the machine goes down right after.
 void write_synced(const std::filesystem::path& file, const std::string& text) {
-  const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  // A new file (O_EXCL), never through a link planted at the name.
+  ::unlink(file.c_str());
+  const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
   if (fd < 0) throw_errno("open", file);
   std::size_t done = 0;
   while (done < text.size()) {

@@ -57,6 +57,8 @@ void write_state_file(const std::filesystem::path& file, const SavedState& saved
   temporary += ".writing";
   try {
     if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
+    // H5Fcreate would follow a link planted at the temporary name and overwrite its target.
+    std::filesystem::remove(temporary);
     {
       const H5Handle h5(
           checked(H5Fcreate(temporary.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),

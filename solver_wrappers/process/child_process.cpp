@@ -76,7 +76,9 @@ std::vector<std::string> child_environment(
 }
 
 int open_log(const std::filesystem::path& log_file, bool truncate) {
-  const int flags = O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC | (truncate ? O_TRUNC : 0);
+  // O_NOFOLLOW: a link planted at the log's name must not make the solver write its target.
+  const int flags =
+      O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC | O_NOFOLLOW | (truncate ? O_TRUNC : 0);
   const int fd = ::open(log_file.c_str(), flags, 0644);
   if (fd < 0)
     throw std::runtime_error("cannot open the log file " + log_file.string() + ": " +

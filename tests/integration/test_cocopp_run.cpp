@@ -1,7 +1,9 @@
 // `cocopp run` / `cocopp check` end to end, as a user runs them.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <thread>
 
 #include "tests/integration/run_helpers.hpp"
 
@@ -237,4 +239,107 @@ TEST(CocoppRun, MappedTubeWithNonMatchingMeshesAgreesWithTheMatchingRun) {
   EXPECT_TRUE(summary["completed"].get<bool>());
   fs::remove_all(matching);
   fs::remove_all(mapped);
+}
+
+// Issue 17, defect 1: a second run of a case while the first runs stops before it touches any
+// file (the results, the summary, the solvers' channels) and names the first run's pid; the
+// first run completes with a whole results file.
+TEST(CocoppRun, ASecondRunOfARunningCaseStopsAndLeavesTheFirstAlone) {
+  const fs::path dir = copy_example("tube/flow_structure", "second_run");
+  edit(dir / "case.yaml", "number_of_timesteps: 100", "number_of_timesteps: 3000");
+  const fs::path log = dir / "first.log";
+  run_command("(" + (fs::path(COCOPP_TEST_BIN_DIR) / "cocopp").string() + " run " +
+              (dir / "case.yaml").string() + " > " + log.string() + " 2>&1; echo \"exit $?\" >> " +
+              log.string() + ") > /dev/null 2>&1 &");
+  const auto wait_for = [&](const std::string& text) {
+    for (int i = 0; i < 3000 && read_text(log).find(text) == std::string::npos; ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    return read_text(log).find(text) != std::string::npos;
+  };
+  ASSERT_TRUE(wait_for("step  100 / 3000")) << read_text(log);
+  const auto summary_before = fs::last_write_time(dir / "results" / "case.h5");
+  const CommandResult second = run_cocopp("run " + (dir / "case.yaml").string());
+  EXPECT_EQ(second.exit_code, 1) << second.output;
+  const auto pid_at = second.output.find("another cocopp run (pid ");
+  ASSERT_NE(pid_at, std::string::npos) << second.output;
+  const std::string pid = std::to_string(std::stoi(second.output.substr(pid_at + 24)));
+  EXPECT_NE(read_text("/proc/" + pid + "/cmdline").find("cocopp"), std::string::npos);
+  EXPECT_NE(second.output.find("case.lock"), std::string::npos) << second.output;
+  EXPECT_EQ(second.output.find("time steps"), std::string::npos) << "no header: nothing started";
+  ASSERT_TRUE(wait_for("exit ")) << read_text(log);
+  // (Long after the pulse some steps stall at round-off: "stalled", exit code 0 all the same.)
+  EXPECT_NE(read_text(log).find(" after 3000 time steps"), std::string::npos)
+      << read_text(log).substr(read_text(log).size() > 2000 ? read_text(log).size() - 2000 : 0);
+  EXPECT_NE(read_text(log).find("exit 0"), std::string::npos);
+  EXPECT_EQ(read_dataset(dir / "results" / "case.h5", "steps/step").size(), 3000u);
+  EXPECT_GE(fs::last_write_time(dir / "results" / "case.h5"), summary_before);
+  EXPECT_EQ(read_json(dir / "results" / "case.summary.json")["steps_completed"].get<int>(), 3000);
+  // Ended, the first run holds nothing: the case runs again.
+  edit(dir / "case.yaml", "number_of_timesteps: 3000", "number_of_timesteps: 5");
+  EXPECT_EQ(run_cocopp("run --quiet " + (dir / "case.yaml").string()).exit_code, 0);
+  fs::remove_all(dir);
+}
+
+// Issue 17, defect 2: a results location that cannot be used is a clean error (exit 1) before
+// any solver starts, never an abort.
+TEST(CocoppRun, AResultsLocationThatCannotBeUsedStopsTheRunBeforeTheSolversStart) {
+  const fs::path dir = copy_example("tube/flow_structure", "results_location");
+  const auto expect_clean_error = [&](const std::string& message) {
+    const CommandResult run = run_cocopp("run " + (dir / "case.yaml").string());
+    EXPECT_EQ(run.exit_code, 1) << run.output;
+    EXPECT_NE(run.output.find("error: "), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find(message), std::string::npos) << run.output;
+    EXPECT_FALSE(fs::exists(dir / "flow" / "flow.log")) << "a solver was started";
+  };
+  write_text(dir / "results", "a file where the results directory should be\n");
+  expect_clean_error("cannot use the directory " + (dir / "results").string());
+  fs::remove(dir / "results");
+  edit(dir / "case.yaml", "number_of_timesteps: 100",
+       "number_of_timesteps: 100\n  results_name: " + std::string(300, 'x'));
+  expect_clean_error("File name too long");
+  fs::remove_all(dir);
+}
+
+// Issue 17, defect 9: command-line errors exit with the documented code 2 (CLI11's own were
+// 105 and 106); --help and --version with 0.
+TEST(CocoppRun, CommandLineErrorsExitWithTwo) {
+  for (const std::string arguments :
+       {"run", "run /nonexistent/case.yaml", "run --no-such-flag x.yaml", "frobnicate", ""}) {
+    const CommandResult run = run_cocopp(arguments);
+    EXPECT_EQ(run.exit_code, 2) << "cocopp " << arguments << ": " << run.output;
+  }
+  for (const std::string arguments : {"--help", "run --help", "--version"})
+    EXPECT_EQ(run_cocopp(arguments).exit_code, 0) << arguments;
+}
+
+// Issue 17, defect 10: links planted at the names cocopp writes never make it write their
+// targets: a results file that is a link is refused before anything starts, a solver log
+// that is a link stops the solver's start, a link at the state file's temporary name is
+// replaced.
+TEST(CocoppRun, LinksPlantedAtItsFileNamesNeverMakeItWriteTheirTargets) {
+  const fs::path dir = copy_example("tube/flow_structure", "planted_links");
+  edit(dir / "case.yaml", "number_of_timesteps: 100", "number_of_timesteps: 3");
+  const fs::path target = dir / "precious.txt";
+  write_text(target, "keep me\n");
+  fs::create_directories(dir / "results");
+  const auto run = [&] { return run_cocopp("run --quiet " + (dir / "case.yaml").string()); };
+
+  fs::create_symlink(target, dir / "results" / "case.h5");
+  CommandResult result = run();
+  EXPECT_EQ(result.exit_code, 1) << result.output;
+  EXPECT_NE(result.output.find("case.h5 is a symbolic link"), std::string::npos) << result.output;
+  fs::remove(dir / "results" / "case.h5");
+
+  fs::create_symlink(target, dir / "flow" / "flow.log");
+  result = run();
+  EXPECT_EQ(result.exit_code, 1) << result.output;
+  EXPECT_NE(result.output.find("cannot open the log file"), std::string::npos) << result.output;
+  fs::remove(dir / "flow" / "flow.log");
+
+  fs::create_symlink(target, dir / "results" / "case.state.h5.writing");
+  result = run();
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_FALSE(fs::is_symlink(dir / "results" / "case.state.h5"));
+  EXPECT_EQ(read_text(target), "keep me\n");
+  fs::remove_all(dir);
 }
