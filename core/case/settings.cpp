@@ -45,7 +45,8 @@ void check_keys(const YAML::Node& node, const std::filesystem::path& file,
   if (!node.IsMap()) return;
   std::map<std::string, YAML::Mark> seen;
   for (auto it = node.begin(); it != node.end(); ++it) {
-    const YAML::Node& key = it->first;
+    // A copy: yaml-cpp's iterator hands out a temporary pair, whose members die with it.
+    const YAML::Node key = it->first;
     const std::string where = path.empty() ? "" : " in '" + path + "'";
     if (!key.IsScalar())
       throw CaseError(location(file, key.Mark()) + ": a key" + where +
