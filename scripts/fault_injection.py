@@ -183,37 +183,30 @@ def judge(trial, code, hung, text, killed_coupler=False, expect_completed=False)
     return result
 
 
-# Scenarios: each runs one trial and returns (judgement, detail).
+# Scenarios: each runs one trial and returns its judgement (or None when skipped).
 
-def solver_kill9(trial, rng):
+def signal_solver(trial, rng, signals):
+    """Sends one of `signals` to the flow or the structure solver at a random moment."""
     trial.start()
     trial.wait_for_step(rng.randint(1, STEPS // 2))
     time.sleep(rng.uniform(0, 0.01))
     pid = trial.solver_pid(rng.choice(["flow", "structure"]))
     if pid:
-        os.kill(pid, signal.SIGKILL)
+        os.kill(pid, rng.choice(signals))
     code, hung = trial.wait()
     return judge(trial, code, hung, trial.output())
+
+
+def solver_kill9(trial, rng):
+    return signal_solver(trial, rng, [signal.SIGKILL])
 
 
 def solver_sigstop(trial, rng):
-    trial.start()
-    trial.wait_for_step(rng.randint(1, STEPS // 2))
-    pid = trial.solver_pid(rng.choice(["flow", "structure"]))
-    if pid:
-        os.kill(pid, signal.SIGSTOP)
-    code, hung = trial.wait()
-    return judge(trial, code, hung, trial.output())
+    return signal_solver(trial, rng, [signal.SIGSTOP])
 
 
 def solver_signals(trial, rng):
-    trial.start()
-    trial.wait_for_step(rng.randint(1, STEPS // 2))
-    pid = trial.solver_pid(rng.choice(["flow", "structure"]))
-    if pid:
-        os.kill(pid, rng.choice([signal.SIGINT, signal.SIGTERM, signal.SIGHUP]))
-    code, hung = trial.wait()
-    return judge(trial, code, hung, trial.output())
+    return signal_solver(trial, rng, [signal.SIGINT, signal.SIGTERM, signal.SIGHUP])
 
 
 def coupler_signals(trial, rng):

@@ -286,6 +286,16 @@ class Run {
 
 }  // namespace
 
+/// A run that never started: the error printed, nothing written.
+RunReport not_started(RunStatus status, const char* reason, const std::exception& error) {
+  fmt::print(stderr, "error: {}\n", error.what());
+  RunReport report;
+  report.outcome.status = status;
+  report.outcome.message = error.what();
+  report.outcome.reason = reason;
+  return report;
+}
+
 RunReport run_case(const std::filesystem::path& case_file, const RunOptions& options) {
   RunReport report;
   Case c;
@@ -293,11 +303,7 @@ RunReport run_case(const std::filesystem::path& case_file, const RunOptions& opt
     c = load_case(case_file, options.restart);
     for (const auto& solver : c.solvers) solver->check();
   } catch (const std::exception& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    report.outcome.status = RunStatus::kInvalidCase;
-    report.outcome.message = e.what();
-    report.outcome.reason = "invalid case";
-    return report;
+    return not_started(RunStatus::kInvalidCase, "invalid case", e);
   }
   // Before anything is written or started: one run of a case at a time, and a results
   // directory that can be written.
@@ -309,11 +315,7 @@ RunReport run_case(const std::filesystem::path& case_file, const RunOptions& opt
       lock_files.push_back(directory / ".cocopp.lock");
     lock = std::make_unique<CaseLock>(lock_files);
   } catch (const std::exception& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    report.outcome.status = RunStatus::kFailed;
-    report.outcome.message = e.what();
-    report.outcome.reason = "the case cannot be run now";
-    return report;
+    return not_started(RunStatus::kFailed, "the case cannot be run now", e);
   }
   print_header(c);
   std::signal(SIGINT, on_interrupt);
