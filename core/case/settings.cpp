@@ -1,5 +1,7 @@
 #include "core/case/settings.hpp"
 
+#include <yaml-cpp/depthguard.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -7,6 +9,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <unordered_map>
 
 #include "core/case/suggest.hpp"
 
@@ -71,6 +74,10 @@ struct Settings::Document {
     std::set<std::string> known_keys;
   };
   std::vector<Mapping> mappings;
+  /// Entries of `mappings` by key path, so that finding a mapping's entry does not scan them
+  /// all (a list of n mappings would take n^2). A path names one node, except the empty
+  /// mappings child_or_empty makes for an absent key: those are told apart by identity.
+  std::unordered_map<std::string, std::vector<std::size_t>> by_path;
 };
 
 Settings Settings::load_file(const std::filesystem::path& file) {
@@ -87,6 +94,11 @@ Settings Settings::load_string(const std::string& text, const std::string& file_
   std::vector<YAML::Node> documents;
   try {
     documents = YAML::LoadAll(text);
+  } catch (const YAML::DeepRecursion& e) {
+    // yaml-cpp stops at 500 levels with the words "bad file"; say what is wrong instead.
+    throw CaseError(location(file_name, e.mark) +
+                    ": lists and mappings nested more than 500 deep: a case file needs a few "
+                    "levels; look for brackets or indentation that never close");
   } catch (const YAML::Exception& e) {
     throw CaseError(location(file_name, e.mark) + ": syntax error: " + e.msg);
   }
@@ -107,12 +119,14 @@ Settings Settings::load_string(const std::string& text, const std::string& file_
 Settings::Settings(std::shared_ptr<Document> document, YAML::Node node, std::string path)
     : document_(std::move(document)), node_(std::move(node)), path_(std::move(path)) {
   // One registry entry per distinct mapping, so copies of a Settings share known keys.
-  for (std::size_t i = 0; i < document_->mappings.size(); ++i)
+  auto& entries = document_->by_path[path_];
+  for (const std::size_t i : entries)
     if (document_->mappings[i].node.is(node_)) {
       index_ = i;
       return;
     }
   index_ = document_->mappings.size();
+  entries.push_back(index_);
   document_->mappings.push_back({node_, path_, {}});
 }
 

@@ -112,7 +112,11 @@ Case load_case(const std::filesystem::path& file, bool restart) {
   c.run = read_run_settings(settings, root.base_directory());
   c.results_directory =
       root.base_directory() / settings.get<std::string>("results_directory", "results");
-  c.results_name = settings.get<std::string>("results_name", file.stem().string());
+  c.results_where = settings.where("results_directory") + ": 'settings.results_directory'";
+  // The stem of files the run creates: a plain name when given (not "../x"); the case file's
+  // own stem otherwise.
+  c.results_name =
+      settings.has("results_name") ? settings.get_name("results_name", "") : file.stem().string();
   c.state_interval = settings.get_int_in_range("state_interval", 0, 0);
   prepare_restart(c, restart, settings);
 

@@ -19,8 +19,9 @@ struct Case {
   std::unique_ptr<CoupledSolver> coupled_solver;
   std::vector<std::unique_ptr<SolverWrapper>> solvers;  ///< exactly two: F (x -> y), S (y -> x)
   std::filesystem::path results_directory;
-  std::string results_name;  ///< file stem of the HDF5 file and the JSON summary
-  int state_interval = 0;    ///< also save the coupled-solver state every this many steps
+  std::string results_where;  ///< "case.yaml:4:3: 'settings.results_directory'" for messages
+  std::string results_name;   ///< file stem of the HDF5 file and the JSON summary
+  int state_interval = 0;     ///< also save the coupled-solver state every this many steps
   /// The solvers' working directories named in the case (the run locks them).
   std::vector<std::filesystem::path> working_directories;
   /// A restarted run: the saved state it continues from (run.timestep_start is its step).

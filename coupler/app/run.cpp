@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <numeric>
 
+#include "core/case/path_problem.hpp"
 #include "coupler/app/case.hpp"
 #include "coupler/app/case_lock.hpp"
 #include "coupler/results/results_writer.hpp"
@@ -31,9 +32,14 @@ void on_interrupt(int signal) {
   kill_all_children();
 }
 
-/// cocopp writes only files it creates: a link at a results file's name (planted, or made by
-/// hand) would make it overwrite the link's target.
+/// The results location can be used: a directory, or nothing yet (the run makes it); not a
+/// file, a loop of links or a name too long. And cocopp writes only files it creates: a link
+/// at a results file's name (planted, or made by hand) would make it overwrite its target.
 void check_results_files(const Case& c) {
+  if (const auto why = path_problem(c.results_directory, PathKind::kDirectory);
+      !why.empty() && why != "does not exist")
+    throw std::runtime_error(c.results_where + ": cannot use the directory " +
+                             c.results_directory.string() + ": it " + why);
   for (const char* extension : {".h5", ".summary.json", ".state.h5"}) {
     const auto file = c.results_directory / (c.results_name + extension);
     if (std::filesystem::is_symlink(file))
@@ -286,12 +292,23 @@ class Run {
 
 }  // namespace
 
+namespace {
+/// An error's text for the user: a std::filesystem error (a path no check above caught) in
+/// words, not as "filesystem error: status: ...".
+std::string error_message(const std::exception& error) {
+  if (const auto* fs_error = dynamic_cast<const std::filesystem::filesystem_error*>(&error))
+    return describe_filesystem_error(*fs_error);
+  return error.what();
+}
+}  // namespace
+
 /// A run that never started: the error printed, nothing written.
 RunReport not_started(RunStatus status, const char* reason, const std::exception& error) {
-  fmt::print(stderr, "error: {}\n", error.what());
+  const std::string message = error_message(error);
+  fmt::print(stderr, "error: {}\n", message);
   RunReport report;
   report.outcome.status = status;
-  report.outcome.message = error.what();
+  report.outcome.message = message;
   report.outcome.reason = reason;
   return report;
 }
@@ -332,11 +349,12 @@ int check_case(const std::filesystem::path& case_file) {
   try {
     const Case c = load_case(case_file);
     for (const auto& solver : c.solvers) solver->check();
+    check_results_files(c);
     fmt::print("{}: OK\n", case_file.string());
     print_header(c);
     return 0;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
+    fmt::print(stderr, "error: {}\n", error_message(e));
     return 2;
   }
 }

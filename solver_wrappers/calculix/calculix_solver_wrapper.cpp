@@ -9,6 +9,7 @@
 #include <set>
 #include <utility>
 
+#include "core/case/path_problem.hpp"
 #include "core/case/suggest.hpp"
 #include "core/data/restart_file.hpp"
 #include "solver_wrappers/calculix/ccx_run.hpp"
@@ -117,12 +118,12 @@ std::string CalculixSolverWrapper::describe() const {
 
 void CalculixSolverWrapper::check() const {
   const std::string solver = "solver '" + name_ + "': ";
-  if (!std::filesystem::is_directory(working_directory_))
+  if (const auto why = path_problem(working_directory_, PathKind::kDirectory); !why.empty())
     throw CaseError(working_directory_where_ + ": " + solver + "working directory " +
-                    working_directory_.string() + " does not exist");
-  if (!std::filesystem::is_regular_file(working_directory_ / input_file_))
-    throw CaseError(input_file_where_ + ": " + solver + "input deck " +
-                    (working_directory_ / input_file_).string() + " does not exist");
+                    working_directory_.string() + " " + why);
+  const auto deck = working_directory_ / input_file_;
+  if (const auto why = path_problem(deck, PathKind::kRegularFile); !why.empty())
+    throw CaseError(input_file_where_ + ": " + solver + "input deck " + deck.string() + " " + why);
   try {
     find_executable(executable_, working_directory_);
   } catch (const std::runtime_error& e) {

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/case/path_problem.hpp"
 #include "core/case/suggest.hpp"
 
 namespace cocopp::openfoam {
@@ -193,7 +194,7 @@ void CaseCheck::run() const {
         dynamic_mesh.where("dynamicFvMesh"), solver, mesh_type ? *mesh_type : "missing"));
 
   const auto boundary_file = case_directory / "constant" / "polyMesh" / "boundary";
-  if (!std::filesystem::exists(boundary_file))
+  if (!path_problem(boundary_file, PathKind::kRegularFile).empty())
     throw CaseError(boundary_file.string() + ": " + solver +
                     "the case has no mesh (make it first, e.g. with blockMesh)");
   const std::vector<std::string> patches = read_boundary_patches(boundary_file);

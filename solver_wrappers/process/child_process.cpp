@@ -18,6 +18,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "core/case/path_problem.hpp"
+
 extern char** environ;
 
 namespace cocopp {
@@ -149,9 +151,9 @@ bool is_executable_file(const std::filesystem::path& path) {
 
 ChildProcess::ChildProcess(const ChildOptions& options) {
   if (options.command.empty()) throw std::invalid_argument("cannot start a process: no command");
-  if (!std::filesystem::is_directory(options.working_directory))
+  if (const auto why = path_problem(options.working_directory, PathKind::kDirectory); !why.empty())
     throw std::runtime_error("cannot start " + options.command[0] + ": working directory " +
-                             options.working_directory.string() + " does not exist");
+                             options.working_directory.string() + " " + why);
   // Everything the child needs is prepared here: after fork() it may not allocate.
   const std::string executable =
       find_executable(options.command[0], options.working_directory).string();
@@ -300,8 +302,8 @@ std::filesystem::path find_executable(const std::string& command,
   if (command.empty()) throw std::runtime_error("empty command");
   if (command.find('/') != std::string::npos) {
     const fs::path candidate = fs::absolute(working_directory / command).lexically_normal();
-    if (!fs::exists(candidate))
-      throw std::runtime_error("executable " + candidate.string() + " does not exist");
+    if (const auto why = path_problem(candidate, PathKind::kAny); !why.empty())
+      throw std::runtime_error("executable " + candidate.string() + " " + why);
     if (!is_executable_file(candidate))
       throw std::runtime_error(candidate.string() + " is not an executable file");
     return candidate;
@@ -320,7 +322,8 @@ std::filesystem::path find_executable(const std::string& command,
   }
   std::string message =
       "executable '" + command + "' not found in " + working_directory.string() + " or on PATH";
-  if (fs::exists(local)) message += " (" + local.string() + " exists but is not executable)";
+  if (path_problem(local, PathKind::kAny).empty())
+    message += " (" + local.string() + " exists but is not executable)";
   throw std::runtime_error(message);
 }
 

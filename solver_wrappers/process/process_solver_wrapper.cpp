@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "core/case/path_problem.hpp"
 #include "core/case/suggest.hpp"
 #include "solver_wrappers/process/child_process.hpp"
 #include "solver_wrappers/solver_error.hpp"
@@ -188,17 +189,18 @@ std::string ProcessSolverWrapper::started() const {
 
 void ProcessSolverWrapper::check() const {
   const std::string solver = "solver '" + name_ + "': ";
-  if (!std::filesystem::is_directory(working_directory_))
+  if (const auto why = path_problem(working_directory_, PathKind::kDirectory); !why.empty())
     throw CaseError(working_directory_where_ + ": " + solver + "working directory " +
-                    working_directory_.string() + " does not exist");
+                    working_directory_.string() + " " + why);
   try {
     find_executable(command_[0], working_directory_);
   } catch (const std::runtime_error& e) {
     throw CaseError(command_where_ + ": " + solver + e.what());
   }
-  if (!input_file_.empty() && !std::filesystem::exists(working_directory_ / input_file_))
-    throw CaseError(input_file_where_ + ": " + solver + "input file " +
-                    (working_directory_ / input_file_).string() + " does not exist");
+  if (input_file_.empty()) return;
+  const auto input = working_directory_ / input_file_;
+  if (const auto why = path_problem(input, PathKind::kRegularFile); !why.empty())
+    throw CaseError(input_file_where_ + ": " + solver + "input file " + input.string() + " " + why);
 }
 
 std::filesystem::path ProcessSolverWrapper::input_file() const {

@@ -292,11 +292,53 @@ TEST(CocoppRun, AResultsLocationThatCannotBeUsedStopsTheRunBeforeTheSolversStart
     EXPECT_FALSE(fs::exists(dir / "flow" / "flow.log")) << "a solver was started";
   };
   write_text(dir / "results", "a file where the results directory should be\n");
-  expect_clean_error("cannot use the directory " + (dir / "results").string());
+  expect_clean_error("cannot use the directory " + (dir / "results").string() +
+                     ": it is not a directory");
   fs::remove(dir / "results");
+  // Issue 17, defect 9: filesystem errors in words, at the key (they were raw "filesystem
+  // error: status: ..." texts).
+  const std::string original = read_text(dir / "case.yaml");
   edit(dir / "case.yaml", "number_of_timesteps: 100",
-       "number_of_timesteps: 100\n  results_name: " + std::string(300, 'x'));
-  expect_clean_error("File name too long");
+       "number_of_timesteps: 100\n  results_directory: " + std::string(300, 'x'));
+  expect_clean_error("case.yaml:8:22: 'settings.results_directory': cannot use the directory");
+  expect_clean_error("has a name longer than the file system allows");
+  write_text(dir / "case.yaml", original);
+  fs::create_symlink("loop_b", dir / "loop_a");
+  fs::create_symlink("loop_a", dir / "loop_b");
+  edit(dir / "case.yaml", "number_of_timesteps: 100",
+       "number_of_timesteps: 100\n  results_directory: loop_a/results");
+  expect_clean_error("is a loop of symbolic links");
+  fs::remove_all(dir);
+}
+
+// Issue 17, defects 9 and 10: paths from the case that cannot be used, and names that would
+// be paths, are errors at their key in words, from `check` as from `run`.
+TEST(CocoppCheck, PathsThatCannotBeUsedAreNamedInWordsAtTheirKey) {
+  const fs::path dir = copy_example("tube/flow_structure", "check_paths");
+  const fs::path file = dir / "case.yaml";
+  const std::string original = read_text(file);
+  fs::create_symlink("loop_b", dir / "loop_a");
+  fs::create_symlink("loop_a", dir / "loop_b");
+  auto expect_error = [&](const std::string& from, const std::string& to,
+                          const std::string& message) {
+    write_text(file, original);
+    edit(file, from, to);
+    const auto check = run_cocopp("check " + file.string());
+    EXPECT_EQ(check.exit_code, 2) << check.output;
+    EXPECT_NE(check.output.find(message), std::string::npos) << check.output;
+    EXPECT_EQ(check.output.find("filesystem error"), std::string::npos) << check.output;
+  };
+  expect_error("working_directory: flow ", "working_directory: loop_a/flow ",
+               "case.yaml:27:24: solver 'flow': working directory " +
+                   (dir / "loop_a/flow").string() + " is a loop of symbolic links");
+  expect_error("working_directory: flow ", "working_directory: " + std::string(300, 'y') + " ",
+               "has a name longer than the file system allows");
+  expect_error("working_directory: flow ", "working_directory: flow/tube_flow.yaml ",
+               "is not a directory");
+  expect_error("number_of_timesteps: 100", "number_of_timesteps: 100\n  results_directory: loop_a",
+               "'settings.results_directory': cannot use the directory");
+  expect_error("number_of_timesteps: 100", "number_of_timesteps: 100\n  results_name: ../../x",
+               "'settings.results_name': '../../x' is not a plain name");
   fs::remove_all(dir);
 }
 

@@ -3,7 +3,8 @@
 # core
 cocopp_unit_test(core/protocol SOURCES test_frame.cpp test_messages.cpp test_transport.cpp
                  LIBS cocopp_protocol)
-cocopp_unit_test(core/case SOURCES test_settings.cpp test_registry.cpp LIBS cocopp_core)
+cocopp_unit_test(core/case SOURCES test_settings.cpp test_registry.cpp test_path_problem.cpp
+                 LIBS cocopp_core)
 
 # mappers
 cocopp_unit_test(mappers/interpolators

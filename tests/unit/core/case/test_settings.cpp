@@ -168,3 +168,31 @@ TEST(Suggest, EditDistanceAndSuggestion) {
             "; did you mean 'gauss_seidel'?");
   EXPECT_EQ(cocopp::did_you_mean("zzzzzz", {"gauss_seidel", "iqni"}), "");
 }
+
+// Issue 17, defect 9: yaml-cpp stops at 500 levels with "syntax error: bad file".
+TEST(Settings, NestingTooDeepIsNamedAsSuch) {
+  const std::string deep = "settings: " + std::string(3000, '[') + std::string(3000, ']') + "\n";
+  const std::string message = error_of([&] { Settings::load_string(deep, "deep.yaml"); });
+  EXPECT_NE(message.find("deep.yaml:1:"), std::string::npos) << message;
+  EXPECT_NE(message.find("nested more than 500 deep"), std::string::npos) << message;
+  EXPECT_EQ(message.find("bad file"), std::string::npos) << message;
+}
+
+// The key registry finds a mapping's entry by its path (it scanned all entries, which made
+// `check` quadratic in the length of a list: 22 s for 80k entries; bench/case_check_scaling.py
+// measures it). Entries must still be told apart: a list's items, and the empty mappings of
+// absent keys, each keep their own known keys.
+TEST(Settings, EachItemOfALongListKeepsItsOwnKnownKeys) {
+  std::string text = "items:\n";
+  for (int i = 0; i < 2000; ++i) text += "  - {name: n" + std::to_string(i) + "}\n";
+  text += "  - {name: last, nmae: typo}\n";
+  const Settings root = Settings::load_string(text, "list.yaml");
+  for (const Settings& item : root.list("items")) (void)item.required<std::string>("name");
+  // Copies of a Settings share its entry; a second child_or_empty of an absent key as well.
+  (void)root.child_or_empty("absent").get<double>("a", 1.0);
+  (void)root.child_or_empty("absent").get<double>("b", 1.0);
+  const std::string message = error_of([&] { root.check_unused_keys(); });
+  EXPECT_NE(message.find("list.yaml:2002:18: unknown key 'items[2000].nmae'; did you mean 'name'"),
+            std::string::npos)
+      << message;
+}
