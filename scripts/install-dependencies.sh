@@ -13,6 +13,7 @@ packages=(
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   python3-h5py python3-matplotlib python3-numpy python3-yaml
   clang-format
+  clang-14 libclang-rt-14-dev  # libFuzzer for the fuzz targets (scripts/fuzz.sh)
 )
 
 missing=()

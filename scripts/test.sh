@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Run the whole test suite: install what is missing, build, run ctest; then the same suite in
 # an AddressSanitizer/UndefinedBehaviorSanitizer build (set COCOPP_SKIP_SANITIZE=1 to skip it
-# locally). This is the command .ci/run calls.
+# locally), and a short run of the fuzz targets (COCOPP_SKIP_FUZZ=1 skips it). This is the
+# command .ci/run calls.
 #
 # OpenFOAM and CalculiX are required (COCOPP_WITH_*=ON), so that a missing solver fails the
 # configure step instead of silently skipping its tests; COCOPP_WITHOUT_OPENFOAM=1 and
@@ -24,4 +25,9 @@ if [ "${COCOPP_SKIP_SANITIZE:-0}" != 1 ]; then
   # Whole example cases (label `long`: minutes of OpenFOAM and ccx time) ran in the Release
   # pass; the sanitizer pass covers cocopp's own code with the rest.
   ctest --test-dir build-asan --output-on-failure --timeout 600 --label-exclude long
+fi
+# The fuzz targets (clang, libFuzzer): 12 s each on their seed corpora (docs/reliability.md).
+# The Release and sanitizer passes above replayed the corpora (ctest fuzz_replay_*).
+if [ "${COCOPP_SKIP_FUZZ:-0}" != 1 ]; then
+  scripts/fuzz.sh --seconds 12
 fi

@@ -1,12 +1,16 @@
 #include "core/case/settings.hpp"
 
 #include <yaml-cpp/depthguard.h>
+#include <yaml-cpp/eventhandler.h>
+#include <yaml-cpp/parser.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <unordered_map>
@@ -63,6 +67,52 @@ void check_keys(const YAML::Node& node, const std::filesystem::path& file,
   }
 }
 
+/// A case file is text: a NUL or another control character (but tab, line feed and carriage
+/// return) means a binary or damaged file, and yaml-cpp's LoadAll loops for ever after a NUL.
+void check_is_text(const std::string& text, const std::filesystem::path& file) {
+  int line = 1;
+  std::size_t line_start = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c == '\n') {
+      ++line;
+      line_start = i + 1;
+    } else if ((c < 0x20 && c != '\t' && c != '\r') || c == 0x7f) {
+      char byte[8];
+      std::snprintf(byte, sizeof byte, "0x%02x", c);
+      throw CaseError(file.string() + ":" + std::to_string(line) + ":" +
+                      std::to_string(i - line_start + 1) + ": a control character (byte " + byte +
+                      "): a case file is text (YAML or JSON); is this the right file?");
+    }
+  }
+}
+
+/// Where a second document starts in `text`, if it has one. A parser that builds nothing reads
+/// at most two documents (YAML::LoadAll would read them all, however many there are).
+std::optional<YAML::Mark> second_document_start(const std::string& text) {
+  struct DocumentStarts : YAML::EventHandler {
+    std::vector<YAML::Mark> starts;
+    void OnDocumentStart(const YAML::Mark& mark) override { starts.push_back(mark); }
+    void OnDocumentEnd() override {}
+    void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+    void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+    void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                  const std::string&) override {}
+    void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                         YAML::EmitterStyle::value) override {}
+    void OnSequenceEnd() override {}
+    void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                    YAML::EmitterStyle::value) override {}
+    void OnMapEnd() override {}
+  } handler;
+  std::istringstream in(text);
+  YAML::Parser parser(in);
+  for (int i = 0; i < 2 && parser.HandleNextDocument(handler); ++i) {
+  }
+  if (handler.starts.size() < 2) return std::nullopt;
+  return handler.starts[1];
+}
+
 }  // namespace
 
 /// Shared by all Settings of one file: which keys each mapping's readers asked for.
@@ -91,9 +141,12 @@ Settings Settings::load_file(const std::filesystem::path& file) {
 Settings Settings::load_string(const std::string& text, const std::string& file_name) {
   auto document = std::make_shared<Document>();
   document->file = file_name;
-  std::vector<YAML::Node> documents;
+  check_is_text(text, file_name);
+  YAML::Node root;
+  std::optional<YAML::Mark> second_document;
   try {
-    documents = YAML::LoadAll(text);
+    root = YAML::Load(text);
+    second_document = second_document_start(text);
   } catch (const YAML::DeepRecursion& e) {
     // yaml-cpp stops at 500 levels with the words "bad file"; say what is wrong instead.
     throw CaseError(location(file_name, e.mark) +
@@ -102,14 +155,13 @@ Settings Settings::load_string(const std::string& text, const std::string& file_
   } catch (const YAML::Exception& e) {
     throw CaseError(location(file_name, e.mark) + ": syntax error: " + e.msg);
   }
-  const YAML::Node root = documents.empty() ? YAML::Node() : documents.front();
   if (!root.IsMap())
     throw CaseError(location(file_name, root.Mark()) +
                     ": the file must hold a mapping of keys (YAML) or an object (JSON)");
   // Content after the first document (a second YAML document, text after the JSON object)
   // would be ignored silently.
-  if (documents.size() > 1)
-    throw CaseError(location(file_name, documents[1].Mark()) +
+  if (second_document)
+    throw CaseError(location(file_name, *second_document) +
                     ": content after the end of the case (a second YAML document, or text "
                     "after the JSON object): a case file holds one; remove it");
   check_keys(root, file_name, "");

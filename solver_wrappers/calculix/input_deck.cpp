@@ -206,6 +206,8 @@ void InputDeck::interpret(const std::vector<Card>& cards) {
       part = Part::kStep;
       nonlinear_geometry_ = card.has("NLGEOM");
     }
+    if (card.keyword == "END STEP" && part == Part::kModel)
+      throw DeckError(card.line.where + ": *END STEP before any *STEP");
     if (part == Part::kModel) keywords_.insert(card.keyword);
     auto& target = part == Part::kModel ? model_definition_ : step_;
     if (part == Part::kAfterStep)

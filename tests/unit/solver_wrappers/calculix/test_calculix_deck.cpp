@@ -104,6 +104,9 @@ TEST_F(DeckTest, ErrorsNameTheFileAndLine) {
   EXPECT_CONTAINS(
       error_message<DeckError>([&] { read("*ELEMENT, TYPE=C3D8\n1, 1, 2, 3\n" + kStep); }),
       "has 3 nodes (8 expected)");
+  // Found by the deck fuzz target: an *END STEP before any *STEP read an empty step (SEGV).
+  EXPECT_CONTAINS(error_message<DeckError>([&] { read(two_hexes() + "*END STEP\n" + kStep); }),
+                  "*END STEP before any *STEP");
 }
 
 TEST_F(DeckTest, QuadraticFaceWeightsAreTheConsistentNodalShares) {
