@@ -5,6 +5,7 @@
 
 #include "coupler/app/bench.hpp"
 #include "coupler/app/components.hpp"
+#include "coupler/app/export_vtk.hpp"
 #include "coupler/app/run.hpp"
 
 int main(int argc, char** argv) {
@@ -64,6 +65,21 @@ int main(int argc, char** argv) {
   bool no_plot = false;
   bench->add_flag("--no-plot", no_plot, "do not draw bench.png");
 
+  std::string results_file;
+  std::string vtk_directory;
+  auto* export_vtk = app.add_subcommand(
+      "export-vtk",
+      "Write the interface of every time step of a results file for ParaView: one VTU file "
+      "per model part and step (the points at their initial coordinates, the variables of x and "
+      "y as point arrays) in <name>_vtk/, and the time series <name>.pvd next to them, as a run "
+      "with settings.vtk_output: true writes them while it goes (docs/results.md). Exit code 0, "
+      "or 1 if the file cannot be read or the files cannot be written.");
+  export_vtk->add_option("results", results_file, "results file (<name>.h5)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  export_vtk->add_option("-o,--output-directory", vtk_directory,
+                         "where to write (default: the results file's directory)");
+
   app.add_subcommand("components", "List the component types a case file can name.");
 
   try {
@@ -75,6 +91,7 @@ int main(int argc, char** argv) {
   }
   if (*run) return cocopp::run_case(case_file, options).outcome.exit_code();
   if (*check) return cocopp::check_case(case_file);
+  if (*export_vtk) return cocopp::export_vtk(results_file, vtk_directory);
   if (*bench) {
     bench_options.plot = !no_plot;
     return cocopp::run_bench(bench_file, bench_options);

@@ -14,6 +14,7 @@
 #include "coupler/results/results_writer.hpp"
 #include "coupler/results/run_summary.hpp"
 #include "coupler/results/state_file.hpp"
+#include "coupler/results/vtk_series.hpp"
 #include "solver_wrappers/process/child_process.hpp"
 #include "solver_wrappers/solver_error.hpp"
 
@@ -132,12 +133,16 @@ class Run {
       writer_ = std::make_unique<ResultsWriter>(results_path(".h5"), describe_run(case_),
                                                 coupled.x(), coupled.y());
     }
+    if (case_.vtk_output)
+      vtk_ = std::make_unique<VtkSeries>(case_.results_directory, case_.results_name,
+                                         case_.restart ? case_.restart->step : -1);
     const int first = case_.run.timestep_start + 1;
     const int last = case_.run.timestep_start + case_.run.number_of_timesteps;
     for (int step = first; step <= last; ++step) {
       current_step_ = step;
       const StepRecord record = coupled.solve_step(step, step * case_.run.delta_t);
       writer_->write_step(record, coupled.x(), coupled.y());
+      if (vtk_) vtk_->write_step(step, record.time, vtk_parts(coupled.x(), coupled.y()));
       summary_.add_step(record);
       iterations_ += record.iterations;
       algorithm_time_ += record.coupler_time;
@@ -273,6 +278,7 @@ class Run {
       line("iterations", fmt::format("{:.2f} per time step on average ({} in all)",
                                      double(iterations_) / steps, iterations_));
     if (writer_) line("results", writer_->path().string());
+    if (vtk_) line("ParaView", vtk_->collection().string());
     if (state_saved_) line("solver state", results_path(".state.h5").string());
     line("summary", results_path(".summary.json").string());
     std::fflush(stdout);  // the error comes last, after the summary, also when piped
@@ -282,6 +288,7 @@ class Run {
   Case& case_;
   RunSummary summary_;
   std::unique_ptr<ResultsWriter> writer_;
+  std::unique_ptr<VtkSeries> vtk_;
   Clock::time_point start_ = Clock::now();
   long iterations_ = 0;
   double algorithm_time_ = 0.0;

@@ -208,6 +208,15 @@ TEST(CocoppCli, HelpDocumentsTheCommands) {
     EXPECT_EQ(help.exit_code, 0) << arguments;
     EXPECT_NE(help.output.find("case"), std::string::npos) << help.output;
   }
+  const CommandResult export_help = run_cocopp("export-vtk --help");
+  EXPECT_EQ(export_help.exit_code, 0);
+  EXPECT_NE(export_help.output.find("ParaView"), std::string::npos) << export_help.output;
+  // A file that is not a results file: exit 1 with the file named.
+  const CommandResult not_results = run_cocopp("export-vtk " + std::string(COCOPP_TEST_SOURCE_DIR) +
+                                               "/examples/tube/flow_structure/case.yaml");
+  EXPECT_EQ(not_results.exit_code, 1) << not_results.output;
+  EXPECT_NE(not_results.output.find("error: "), std::string::npos) << not_results.output;
+  EXPECT_NE(not_results.output.find("case.yaml"), std::string::npos) << not_results.output;
   const CommandResult components = run_cocopp("components");
   EXPECT_NE(components.output.find("gauss_seidel"), std::string::npos) << components.output;
   EXPECT_NE(components.output.find("tube_flow"), std::string::npos) << components.output;
