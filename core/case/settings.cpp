@@ -244,11 +244,28 @@ T Settings::convert(const YAML::Node& value, const std::string& key) const {
   }
 }
 
+std::string Settings::misspelling_hint(const std::string& key) const {
+  if (!node_.IsMap()) return "";
+  const auto& known = document_->mappings[index_].known_keys;
+  std::vector<std::string> unread;
+  std::map<std::string, YAML::Mark> marks;
+  for (auto it = node_.begin(); it != node_.end(); ++it) {
+    const YAML::Node name = it->first;
+    if (!name.IsScalar() || known.count(name.Scalar()) != 0 || name.Scalar() == key) continue;
+    unread.push_back(name.Scalar());
+    marks.emplace(name.Scalar(), name.Mark());
+  }
+  const std::string near = nearest(key, unread);
+  if (near.empty()) return "";
+  return "; is '" + near + "' (line " + std::to_string(marks.at(near).line + 1) +
+         ") a misspelling of it?";
+}
+
 template <class T>
 T Settings::required(const std::string& key) const {
   YAML::Node value = lookup(key);
   if (!value.IsDefined() || value.IsNull())
-    fail("", "missing required key '" + key_path(key) + "'");
+    fail("", "missing required key '" + key_path(key) + "'" + misspelling_hint(key));
   return convert<T>(value, key);
 }
 
@@ -369,7 +386,7 @@ std::string Settings::get_choice(const std::string& key, const std::string& defa
 Settings Settings::child(const std::string& key) const {
   YAML::Node value = lookup(key);
   if (!value.IsDefined() || value.IsNull())
-    fail("", "missing required section '" + key_path(key) + "'");
+    fail("", "missing required section '" + key_path(key) + "'" + misspelling_hint(key));
   if (!value.IsMap()) fail(key, "expected a mapping of keys");
   return Settings(document_, value, key_path(key));
 }
@@ -383,7 +400,7 @@ Settings Settings::child_or_empty(const std::string& key) const {
 std::vector<Settings> Settings::list(const std::string& key) const {
   YAML::Node value = lookup(key);
   if (!value.IsDefined() || value.IsNull())
-    fail("", "missing required list '" + key_path(key) + "'");
+    fail("", "missing required list '" + key_path(key) + "'" + misspelling_hint(key));
   if (!value.IsSequence()) fail(key, "expected a list");
   std::vector<Settings> out;
   for (std::size_t i = 0; i < value.size(); ++i) {

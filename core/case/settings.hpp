@@ -89,6 +89,10 @@ class Settings {
   std::filesystem::path base_directory() const;
   const std::filesystem::path& file() const;
 
+  /// For a required key that is missing: "; is 'number_of_timestep' (line 7) a misspelling of
+  /// it?" when a key of this mapping that no reader has asked for is close to it, else "".
+  std::string misspelling_hint(const std::string& key) const;
+
   /// Throw CaseError "file:line:col: key.path: message".
   [[noreturn]] void fail(const std::string& key, const std::string& message) const;
 

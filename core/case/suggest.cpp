@@ -22,6 +22,11 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
 }
 
 std::string did_you_mean(const std::string& word, const std::vector<std::string>& candidates) {
+  const std::string best = nearest(word, candidates);
+  return best.empty() ? "" : "; did you mean '" + best + "'?";
+}
+
+std::string nearest(const std::string& word, const std::vector<std::string>& candidates) {
   std::string best;
   std::size_t best_distance = std::string::npos;
   for (const auto& candidate : candidates) {
@@ -34,7 +39,7 @@ std::string did_you_mean(const std::string& word, const std::vector<std::string>
   // Accept a suggestion if fewer than half the letters differ (at least 2 edits allowed).
   const std::size_t allowed = std::max<std::size_t>(2, word.size() / 2);
   if (best.empty() || best_distance > allowed) return "";
-  return "; did you mean '" + best + "'?";
+  return best;
 }
 
 std::string join(const std::vector<std::string>& words, const std::string& separator) {

@@ -20,7 +20,11 @@ RunSettings read_run_settings(const Settings& s, const std::filesystem::path& ca
   run.timestep_start = s.get_int_in_range("timestep_start", 0, 0, kMostSteps);
   const bool has_steps = s.has("number_of_timesteps");
   const bool has_end = s.has("end_time");
-  if (has_steps == has_end) s.fail("", "give exactly one of 'number_of_timesteps' and 'end_time'");
+  if (has_steps == has_end) {
+    const std::string hint =
+        has_steps ? "" : s.misspelling_hint("number_of_timesteps") + s.misspelling_hint("end_time");
+    s.fail("", "give exactly one of 'number_of_timesteps' and 'end_time'" + hint);
+  }
   if (has_steps) {
     run.number_of_timesteps = s.get_int_in_range("number_of_timesteps", 1, 1, kMostSteps);
   } else {

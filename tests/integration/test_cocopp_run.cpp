@@ -189,6 +189,9 @@ TEST(CocoppCheck, NumbersThatWouldBreakTheRunAndASharedWorkingDirectory) {
     EXPECT_EQ(check.exit_code, 2) << check.output;
     EXPECT_NE(check.output.find(message), std::string::npos) << check.output;
   };
+  expect_error("number_of_timesteps: 100", "number_of_timestep: 100",
+               "give exactly one of 'number_of_timesteps' and 'end_time'; is "
+               "'number_of_timestep' (line 7) a misspelling of it?");
   expect_error("number_of_timesteps: 100", "end_time: 1.0e+6",
                "'settings.end_time': is 1e+10 time steps of delta_t after the start: at most "
                "1000000000 are possible");

@@ -213,3 +213,25 @@ TEST(Settings, AControlCharacterIsAnErrorAtItsPosition) {
   // Tabs and Windows line ends are text.
   EXPECT_EQ(Settings::load_string("a:\t1\r\nb: 2\r\n", "crlf.yaml").get<int>("b", 0), 2);
 }
+
+// Issue 18: a misspelt required key was reported as missing without a word about the typo
+// beside it. The unread keys of the mapping are searched for a near one.
+TEST(Settings, AMissingRequiredKeyPointsAtItsMisspelling) {
+  const Settings root = Settings::load_string(
+      "coupled_solvers:\n  type: iqni\nsolver:\n  workingdirectory: flow\n  name: a\n", "t.yaml");
+  EXPECT_NE(error_of([&] { root.child("coupled_solver"); })
+                .find("missing required section 'coupled_solver'; is 'coupled_solvers' (line 1) "
+                      "a misspelling of it?"),
+            std::string::npos);
+  const Settings solver = root.child("solver");
+  (void)solver.required<std::string>("name");
+  EXPECT_NE(error_of([&] {
+              solver.required<std::string>("working_directory");
+            }).find("is 'workingdirectory' (line 4) a misspelling of it?"),
+            std::string::npos);
+  // A key already read, or one far from the missing key, is no hint.
+  EXPECT_EQ(error_of([&] { solver.required<std::string>("nme"); }).find("misspelling"),
+            std::string::npos);
+  EXPECT_EQ(error_of([&] { solver.required<double>("omega"); }).find("misspelling"),
+            std::string::npos);
+}
