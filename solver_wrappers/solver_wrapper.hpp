@@ -25,6 +25,10 @@ class SolverWrapper {
 
   /// The name used in messages and results (`name` in the case, default: the type).
   virtual const std::string& name() const = 0;
+  /// The name an enclosing wrapper (`mapped`) passes on when the case names only the enclosing
+  /// one: then this wrapper's log, restart files and messages carry the name the user gave.
+  /// A name given in the case wins.
+  virtual void set_default_name(const std::string& /*name*/) {}
   /// One line for the run header: what runs where (command, working directory, log file).
   virtual std::string describe() const { return name(); }
   /// After initialize(): what was started, for the run header, e.g. "flow (pid 1234)".

@@ -78,6 +78,8 @@ bool is_axisymmetric(const std::string& type) {
 CalculixSolverWrapper::CalculixSolverWrapper(const Settings& settings, const RunSettings& run)
     : run_(run) {
   name_ = settings.get_name("name", "calculix");
+  name_given_ = settings.has("name");
+  log_file_given_ = settings.has("log_file");
   working_directory_ = std::filesystem::absolute(
                            run.case_directory / settings.required<std::string>("working_directory"))
                            .lexically_normal();
@@ -109,6 +111,12 @@ CalculixSolverWrapper::CalculixSolverWrapper(const Settings& settings, const Run
 }
 
 CalculixSolverWrapper::~CalculixSolverWrapper() = default;
+
+void CalculixSolverWrapper::set_default_name(const std::string& name) {
+  if (name_given_) return;
+  name_ = name;
+  if (!log_file_given_) log_file_ = working_directory_ / (name_ + ".log");
+}
 
 std::string CalculixSolverWrapper::describe() const {
   return fmt::format("{}: {} -i {} for {} (in {}; log {}; {} thread{}; state reset: {})", name_,

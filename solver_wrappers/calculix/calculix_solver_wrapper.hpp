@@ -55,6 +55,7 @@ class CalculixSolverWrapper : public SolverWrapper {
   ~CalculixSolverWrapper() override;
 
   const std::string& name() const override { return name_; }
+  void set_default_name(const std::string& name) override;
   std::string describe() const override;
   void check() const override;
 
@@ -91,6 +92,8 @@ class CalculixSolverWrapper : public SolverWrapper {
 
   // From the case file.
   std::string name_;
+  bool name_given_ = false;      ///< `name` is in the case
+  bool log_file_given_ = false;  ///< `log_file` is in the case
   std::filesystem::path working_directory_;
   std::string input_file_;
   std::string surface_name_;

@@ -39,6 +39,7 @@ class MappedSolverWrapper : public SolverWrapper {
                  "current"),
         report_(settings.get<bool>("report_quality", false)),
         time_(run.timestep_start * run.delta_t) {
+    if (settings.has("name")) inner_->set_default_name(name_);
     // Build one mapper now so that `cocopp check` validates the mapper settings.
     Mapper{input_settings_};
     Mapper{output_settings_};

@@ -128,6 +128,8 @@ ProcessSolverWrapper::ProcessSolverWrapper(const Settings& settings, const RunSe
                                            std::optional<DefaultCommand> default_command)
     : run_(run) {
   name_ = settings.get_name("name", settings.required<std::string>("type"));
+  name_given_ = settings.has("name");
+  log_file_given_ = settings.has("log_file");
   const std::filesystem::path directory = settings.required<std::string>("working_directory");
   working_directory_ = std::filesystem::absolute(run.case_directory / directory).lexically_normal();
   working_directory_where_ = settings.where("working_directory");
@@ -175,6 +177,12 @@ ProcessSolverWrapper::~ProcessSolverWrapper() {
   } catch (...) {
     // Unwinding from another error, most likely: that one is the one to report.
   }
+}
+
+void ProcessSolverWrapper::set_default_name(const std::string& name) {
+  if (name_given_) return;
+  name_ = name;
+  if (!log_file_given_) log_file_ = working_directory_ / (name_ + ".log");
 }
 
 std::string ProcessSolverWrapper::describe() const {

@@ -47,6 +47,7 @@ class ProcessSolverWrapper : public SolverWrapper {
   ProcessSolverWrapper& operator=(const ProcessSolverWrapper&) = delete;
 
   const std::string& name() const override { return name_; }
+  void set_default_name(const std::string& name) override;
   std::string started() const override;
   std::string describe() const override;
   void check() const override;
@@ -105,6 +106,8 @@ class ProcessSolverWrapper : public SolverWrapper {
 
   // From the case file.
   std::string name_;
+  bool name_given_ = false;      ///< `name` is in the case
+  bool log_file_given_ = false;  ///< `log_file` is in the case
   std::filesystem::path working_directory_;
   std::vector<std::string> command_;
   std::string input_file_;  ///< known for built-in solvers only (checked by check())

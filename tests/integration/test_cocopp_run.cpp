@@ -234,6 +234,10 @@ TEST(CocoppRun, MappedTubeWithNonMatchingMeshesAgreesWithTheMatchingRun) {
   const CommandResult run = run_cocopp("run -q " + (mapped / "case.yaml").string());
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_NE(run.output.find("structure mapped onto"), std::string::npos) << run.output;
+  // Issue 18: the solver inside the mapped wrapper carries the case's name (it logged to
+  // tube_structure.log, after its type).
+  EXPECT_TRUE(fs::exists(mapped / "structure" / "structure.log"));
+  EXPECT_FALSE(fs::exists(mapped / "structure" / "tube_structure.log"));
   // The quality report: the flow's end points lie beyond the structure's, so they fall back.
   EXPECT_NE(run.output.find("structure output mapper, wall -> wall"), std::string::npos)
       << run.output;
