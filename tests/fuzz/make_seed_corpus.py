@@ -2,7 +2,7 @@
 """Writes the fuzz targets' seed corpora, tests/fuzz/corpus/<target>/, from the examples (case
 files, ccx decks, OpenFOAM dictionaries), from the protocol's byte layout (docs/protocol.md),
 and from the inputs behind issue 17's defects; files named found_* are inputs a fuzz run found
-(each fixed, each with a test) and stay. Rerun it after an example changes:
+(each fixed, each with a test) and cov_* the minimized corpus of a long case-file run: they stay. Rerun it after an example changes:
 
   /usr/bin/python3 tests/fuzz/make_seed_corpus.py
 """
@@ -158,9 +158,10 @@ def frames():
 
 
 def main():
-    # found_*: inputs a fuzz run found (a crash or a hang, fixed since): kept as they are.
+    # found_*: inputs a fuzz run found (a crash or a hang, fixed since); cov_*: the case-file
+    # corpus of a long fuzz run, minimized (-merge=1), which the sanitizer build replays. Kept.
     for file in CORPUS.glob("*/*"):
-        if not file.name.startswith("found_"):
+        if not file.name.startswith(("found_", "cov_")):
             file.unlink()
     case_files()
     decks()
