@@ -32,6 +32,8 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::ExistingFile);
   run->add_flag("-q,--quiet", options.quiet, "no progress line per time step");
+  run->add_flag("-v,--verbose", options.verbose,
+                "also one line per coupling iteration (residual, and the time into the step)");
   run->add_flag("--restart", options.restart,
                 "continue a run from its saved state (<results_directory>/<name>.state.h5, "
                 "written at the end of a run and every settings.state_interval steps) up to the "

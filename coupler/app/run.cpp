@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <numeric>
@@ -77,12 +78,36 @@ RunDescription describe_run(const Case& c) {
   return d;
 }
 
-void print_progress(const StepRecord& r, int last_step) {
+/// "42 s", "3 min 20 s", "2 h 05 min".
+std::string duration(double seconds) {
+  const long s = std::lround(seconds);
+  if (s < 60) return fmt::format("{} s", s);
+  if (s < 3600) return fmt::format("{} min {:02} s", s / 60, s % 60);
+  return fmt::format("{} h {:02} min", s / 3600, (s % 3600) / 60);
+}
+
+/// One line per time step: the residual (2-norm, and as the criterion measures it where that
+/// differs: "relative 3.1e-07"), the step's wall time, and the time left at the average pace
+/// of the steps so far.
+void print_progress(const StepRecord& r, int last_step, double seconds_left) {
+  const std::string criterion =
+      r.criterion_progress.empty() ? "" : " (" + r.criterion_progress + ")";
   const std::string surrogate =
       r.surrogate_iterations > 0 ? fmt::format("  (surrogate {:>2})", r.surrogate_iterations) : "";
-  fmt::print("step {:>{}} / {}  t = {:<10.4g} iterations {:>3}  residual {:.3e}{}  {:8.3f} ms{}\n",
-             r.step, std::to_string(last_step).size(), last_step, r.time, r.iterations,
-             r.residual_norms.back(), r.converged ? " " : "*", 1e3 * r.wall_time, surrogate);
+  const std::string left = r.step < last_step ? "  left " + duration(seconds_left) : "";
+  fmt::print(
+      "step {:>{}} / {}  t = {:<10.4g} iterations {:>3}  residual {:.3e}{}{}  {:8.3f} ms{}{}\n",
+      r.step, std::to_string(last_step).size(), last_step, r.time, r.iterations,
+      r.residual_norms.back(), r.converged ? " " : "*", criterion, 1e3 * r.wall_time, surrogate,
+      left);
+  std::fflush(stdout);
+}
+
+/// `--verbose`: one line per coupling iteration, indented under the step's line to come.
+void print_iteration(const IterationReport& r) {
+  fmt::print("    step {} iteration {:>3}  residual {:.3e}{}  {:.3f} s into the step\n", r.step,
+             r.iteration, r.residual, r.criterion.empty() ? "" : " (" + r.criterion + ")",
+             r.step_seconds);
   std::fflush(stdout);
 }
 
@@ -136,8 +161,10 @@ class Run {
     if (case_.vtk_output)
       vtk_ = std::make_unique<VtkSeries>(case_.results_directory, case_.results_name,
                                          case_.restart ? case_.restart->step : -1);
+    if (options.verbose) coupled.set_iteration_observer(print_iteration);
     const int first = case_.run.timestep_start + 1;
     const int last = case_.run.timestep_start + case_.run.number_of_timesteps;
+    const auto march_start = std::chrono::steady_clock::now();
     for (int step = first; step <= last; ++step) {
       current_step_ = step;
       const StepRecord record = coupled.solve_step(step, step * case_.run.delta_t);
@@ -146,7 +173,11 @@ class Run {
       summary_.add_step(record);
       iterations_ += record.iterations;
       algorithm_time_ += record.coupler_time;
-      if (!options.quiet) print_progress(record, last);
+      if (!options.quiet) {
+        const std::chrono::duration<double> elapsed =
+            std::chrono::steady_clock::now() - march_start;
+        print_progress(record, last, elapsed.count() / (step - first + 1) * (last - step));
+      }
       print_warnings(record);
       // The last step is saved once, after the loop.
       if (case_.state_interval > 0 && step < last && step % case_.state_interval == 0)

@@ -10,6 +10,7 @@ namespace cocopp {
 
 struct RunOptions {
   bool quiet = false;    ///< no progress lines (header and summary are still printed)
+  bool verbose = false;  ///< also one line per coupling iteration
   bool restart = false;  ///< continue from the saved state (load_case's `restart`)
 };
 

@@ -31,6 +31,12 @@ class Combined : public ConvergenceCriterion {
       if (c->tolerance_met()) return true;
     return false;
   }
+  std::string progress() const override {
+    std::vector<std::string> parts;
+    for (const auto& c : criteria_)
+      if (auto part = c->progress(); !part.empty()) parts.push_back(std::move(part));
+    return join(parts, ", ");
+  }
   std::string describe() const override {
     std::vector<std::string> parts;
     for (const auto& c : criteria_) parts.push_back(c->describe());

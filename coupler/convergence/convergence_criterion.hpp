@@ -20,6 +20,9 @@ class ConvergenceCriterion {
   virtual bool is_satisfied() const = 0;
   /// Stopped because the tolerance was met (not only because of an iteration limit).
   virtual bool tolerance_met() const { return is_satisfied(); }
+  /// Where the last residual stands as this criterion measures it, for the progress line
+  /// (e.g. "relative 3.1e-07"); "" when the 2-norm the line shows already says it.
+  virtual std::string progress() const { return ""; }
   /// One line for the run header, e.g. "relative_norm(2) < 1e-06".
   virtual std::string describe() const = 0;
 };

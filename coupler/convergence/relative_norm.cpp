@@ -21,6 +21,11 @@ class RelativeNorm : public NormCriterion {
     if (first_ == 0.0) return true;
     return last_ / first_ < tolerance_;
   }
+  std::string progress() const override {
+    if (first_ <= 0.0 || last_ < 0.0) return "";
+    return fmt::format("relative{} {:.2e}", order_ == "2" ? "" : "(" + order_ + ")",
+                       last_ / first_);
+  }
   std::string describe() const override {
     return fmt::format("relative_norm({}) < {:g}", order_, tolerance_);
   }

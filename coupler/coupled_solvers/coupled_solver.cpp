@@ -147,6 +147,10 @@ StepRecord CoupledSolver::iterate_step(int step, double time) {
       break;
     }
     criterion_->update(r);
+    record.criterion_progress = criterion_->progress();
+    if (iteration_observer_)
+      iteration_observer_({step, iteration, record.residual_norms.back(), record.criterion_progress,
+                           seconds_since(step_start_)});
     if (criterion_->is_satisfied()) {
       on_converged(x, xt, r);
       tolerance_met = criterion_->tolerance_met();

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -34,6 +35,15 @@ class DivergenceError : public std::runtime_error {
   int iteration;
 };
 
+/// One coupling iteration as it ends, for `cocopp run --verbose`.
+struct IterationReport {
+  int step;
+  int iteration;
+  double residual;        ///< 2-norm of r = x~ - x
+  std::string criterion;  ///< the residual as the criterion measures it (may be empty)
+  double step_seconds;    ///< wall time since the step started
+};
+
 class CoupledSolver {
  public:
   static constexpr const char* kind = "coupled solver";
@@ -50,6 +60,11 @@ class CoupledSolver {
   /// Between steps, before the state is saved: both solvers (and the coupled solver's own)
   /// keep what a run restarted after `step` needs (SolverWrapper::save_restart).
   void save_solver_restarts(int step);
+  /// Called after every coupling iteration (a CFD step can take minutes: a user wants to see
+  /// it move).
+  void set_iteration_observer(std::function<void(const IterationReport&)> observer) {
+    iteration_observer_ = std::move(observer);
+  }
   /// Advance, iterate to convergence, commit and write one time step.
   StepRecord solve_step(int step, double time);
   /// The two halves of solve_step(), for a coupled solver run inside another (a surrogate):
@@ -177,6 +192,7 @@ class CoupledSolver {
   std::array<SolverWrapper*, 2> solvers_{};
   Interface x_, y_;  ///< layouts of the first solver's input and output
   std::chrono::steady_clock::time_point step_start_;
+  std::function<void(const IterationReport&)> iteration_observer_;
   int step_ = 0;
   double time_ = 0.0;
   std::array<double, 2> solver_time_step_{};

@@ -28,6 +28,9 @@ struct StepRecord {
   std::vector<double> solver_times;    ///< s, per solver wrapper, same order as solver_names
   double coupler_time = 0;             ///< s, wall_time minus the solver times
   bool converged = true;  ///< false: accepted at an iteration limit without meeting the tolerance
+  /// The last residual as the convergence criterion measures it ("relative 3.1e-07"), for the
+  /// progress line; not written to the results.
+  std::string criterion_progress;
   int surrogate_iterations = 0;  ///< iqnism: the coupling iterations of its surrogate
   /// Degenerate situations the coupled solver handled and went on (a repeated residual, more
   /// secant columns than unknowns), each once with a count: "... (3 times)".

@@ -1,4 +1,5 @@
 // `cocopp run` / `cocopp check` end to end, as a user runs them.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -18,6 +19,12 @@ TEST(CocoppRun, FlowStructureTubeConvergesWithIqnIls) {
   EXPECT_NE(run.output.find("coupled solver : iqni (omega 0.05, model ls)"), std::string::npos)
       << run.output;
   EXPECT_NE(run.output.find("step 100 / 100"), std::string::npos);
+  // Issue 18: the residual as the relative criterion measures it, and the time left.
+  EXPECT_NE(run.output.find("step   1 / 100  t = 0.0001     iterations  13  residual 3.170e-11  "
+                            "(relative 5.62e-07)"),
+            std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find("  left "), std::string::npos);
   EXPECT_NE(run.output.find("completed after 100 time steps"), std::string::npos);
   EXPECT_NE(run.output.find("per coupling iteration"), std::string::npos);
 
@@ -41,6 +48,23 @@ TEST(CocoppRun, FlowStructureTubeConvergesWithIqnIls) {
   EXPECT_GT(ages.size(), 0u);
   EXPECT_EQ(read_dataset(state, "model/v").size(), 300u * ages.size());
   for (double age : ages) EXPECT_LE(age, 10.0);  // q = 10
+  fs::remove_all(dir);
+}
+
+// Issue 18: `--verbose` shows every coupling iteration (a CFD step can take minutes).
+TEST(CocoppRun, VerboseShowsEveryCouplingIteration) {
+  const fs::path dir = copy_example("tube/flow_structure", "fs_verbose");
+  edit(dir / "case.yaml", "number_of_timesteps: 100", "number_of_timesteps: 2");
+  const CommandResult run = run_cocopp("run -v " + (dir / "case.yaml").string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  for (int iteration = 1; iteration <= 13; ++iteration)
+    EXPECT_NE(run.output.find(fmt::format("    step 1 iteration {:>3}  residual ", iteration)),
+              std::string::npos)
+        << iteration << run.output;
+  EXPECT_EQ(run.output.find("    step 1 iteration  14"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("    step 1 iteration   1  residual 5.637e-05 (relative 1.00e+00)"),
+            std::string::npos)
+      << run.output;
   fs::remove_all(dir);
 }
 
