@@ -55,6 +55,8 @@ def rows_of(f, steps):
     """Row indices of the requested step numbers; exits with the available range if absent."""
     numbers = f["steps/step"][:]
     if len(numbers) == 0:
+        if "unfinished_step" in f:  # the run stopped in its first step: its residuals only
+            return [], []
         sys.exit("the results file has no time steps yet")
     if not steps:
         steps = sorted({int(numbers[0]), int(numbers[len(numbers) // 2]), int(numbers[-1])})
@@ -74,9 +76,17 @@ def plot_residuals(ax, f):
         history = np.where(np.isfinite(history) & (history > 0), history, np.nan)
         ax.semilogy(np.arange(1, len(history) + 1), history, "-" if converged[row] else "--",
                     marker="." if converged[row] else "x", color=colors[row], linewidth=0.8)
-    mappable = plt.cm.ScalarMappable(
-        cmap="viridis", norm=matplotlib.colors.Normalize(numbers[0], numbers[-1]))
-    plt.colorbar(mappable, ax=ax, label="time step")
+    if len(numbers):
+        mappable = plt.cm.ScalarMappable(
+            cmap="viridis", norm=matplotlib.colors.Normalize(numbers[0], numbers[-1]))
+        plt.colorbar(mappable, ax=ax, label="time step")
+    if "unfinished_step" in f:  # the step the run stopped in (diverged, solver failed, ...)
+        unfinished = f["unfinished_step"]
+        history = unfinished["residual_norms"][:]
+        history = np.where(np.isfinite(history) & (history > 0), history, np.nan)
+        ax.semilogy(np.arange(1, len(history) + 1), history, "-", marker="o", color="red",
+                    linewidth=1.5, label=f"step {unfinished.attrs['step']}: the run stopped here")
+        ax.legend()
     ax.set_xlabel("coupling iteration")
     ax.set_ylabel("residual 2-norm")
     ax.set_title("residual history per time step (x, dashed: accepted unconverged)")
@@ -94,6 +104,10 @@ def find_part(group, variable, wanted):
 def plot_interface(ax, f, name, variable, rows, steps, args):
     group = f[name]
     part = find_part(group, variable, args.model_part)
+    if not rows:
+        ax.text(0.5, 0.5, "no completed time step", ha="center", transform=ax.transAxes)
+        ax.set_axis_off()
+        return
     if part is None:
         ax.text(0.5, 0.5, f"no '{variable}' in interface {name}", ha="center",
                 transform=ax.transAxes)

@@ -282,6 +282,11 @@ class Run {
     const double own_solvers = case_.coupled_solver->own_solvers_time_total();
     const double coupler = wall - solver_times[0] - solver_times[1] - own_solvers;
     try {
+      const CoupledSolver& coupled = *case_.coupled_solver;
+      if (writer_ && coupled.unfinished_step() > 0)
+        writer_->write_unfinished_step(coupled.unfinished_step(),
+                                       coupled.unfinished_step() * case_.run.delta_t,
+                                       coupled.unfinished_residuals());
       if (writer_) writer_->close(to_string(outcome.status), outcome.message);
     } catch (const std::exception& e) {
       note_write_failure(outcome, e);

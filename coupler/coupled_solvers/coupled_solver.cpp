@@ -124,6 +124,8 @@ StepRecord CoupledSolver::iterate_step(int step, double time) {
   StepRecord record;
   record.step = step;
   record.time = time;
+  unfinished_step_ = step;
+  unfinished_residuals_.clear();
   for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->initialize_step(step, time); });
 
   // The previous step's converged input: what the solvers last accepted.
@@ -138,6 +140,7 @@ StepRecord CoupledSolver::iterate_step(int step, double time) {
     accepted = x;
     const Eigen::VectorXd r = xt - x;
     record.residual_norms.push_back(r.norm());
+    unfinished_residuals_ = record.residual_norms;
     record.iterations = iteration;
     if (iteration == 1) largest_first_residual_ = std::max(largest_first_residual_, r.norm());
     check_divergence(record.residual_norms, step, time, notes);
@@ -175,6 +178,8 @@ void CoupledSolver::commit_step(StepRecord& record) {
   for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->finalize_step(); });
   for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->output_step(); });
 
+  unfinished_step_ = 0;
+  unfinished_residuals_.clear();
   record.wall_time = seconds_since(step_start_);
   record.solver_times = {solver_time_step_[0], solver_time_step_[1]};
   record.coupler_time =

@@ -65,6 +65,10 @@ class CoupledSolver {
   void set_iteration_observer(std::function<void(const IterationReport&)> observer) {
     iteration_observer_ = std::move(observer);
   }
+  /// The step being computed when a run stopped in it (0 if none) and the residual norms of
+  /// its iterations so far.
+  int unfinished_step() const { return unfinished_step_; }
+  const std::vector<double>& unfinished_residuals() const { return unfinished_residuals_; }
   /// Advance, iterate to convergence, commit and write one time step.
   StepRecord solve_step(int step, double time);
   /// The two halves of solve_step(), for a coupled solver run inside another (a surrogate):
@@ -193,6 +197,8 @@ class CoupledSolver {
   Interface x_, y_;  ///< layouts of the first solver's input and output
   std::chrono::steady_clock::time_point step_start_;
   std::function<void(const IterationReport&)> iteration_observer_;
+  int unfinished_step_ = 0;
+  std::vector<double> unfinished_residuals_;
   int step_ = 0;
   double time_ = 0.0;
   std::array<double, 2> solver_time_step_{};

@@ -464,6 +464,22 @@ void ResultsWriter::flush() {
   checked(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), "flushing the file");
 }
 
+void ResultsWriter::write_unfinished_step(int step, double time,
+                                          const std::vector<double>& residual_norms) {
+  if (!is_open()) return;
+  const QuietErrors quiet;
+  try {
+    const H5Handle group = create_group(file_.get(), "unfinished_step");
+    set_int(group.get(), "step", step);
+    set_double(group.get(), "time", time);
+    write_fixed(group.get(), "residual_norms", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
+                {residual_norms.size()}, residual_norms.data(), nullptr);
+    flush();
+  } catch (const H5Error& error) {
+    fail(error);
+  }
+}
+
 void ResultsWriter::close(const std::string& status, const std::string& message) {
   if (!is_open()) return;
   if (status.empty()) throw std::invalid_argument("results file status must not be empty");

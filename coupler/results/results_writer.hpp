@@ -43,6 +43,11 @@ class ResultsWriter {
   /// why the run stopped, and closes the file. Calling it again does nothing.
   void close(const std::string& status, const std::string& message);
 
+  /// The step a run stopped in (a divergence, a failed solver, an interrupt): its number, time
+  /// and the residual norms of its iterations, as group /unfinished_step, so that the failure
+  /// can be plotted. Before close().
+  void write_unfinished_step(int step, double time, const std::vector<double>& residual_norms);
+
   const std::filesystem::path& path() const { return path_; }
   bool is_open() const { return file_.valid(); }
   /// Steps written by this run (a restarted run: since the restart).

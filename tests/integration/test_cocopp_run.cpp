@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <thread>
 
 #include "tests/integration/run_helpers.hpp"
@@ -100,6 +101,18 @@ solver_wrappers:
   EXPECT_EQ(summary["status"].get<std::string>(), "diverged");
   // The results file stays readable: the layout is there, with no converged step.
   EXPECT_TRUE(read_dataset(dir / "results" / "case.h5", "steps/iterations").empty());
+  // Issue 18: the step it stopped in keeps its residuals (5 iterations, growing by over 1e6),
+  // and the plot script draws them.
+  const auto norms = read_dataset(dir / "results" / "case.h5", "unfinished_step/residual_norms");
+  ASSERT_EQ(norms.size(), 5u);
+  EXPECT_GT(norms.back() / norms.front(), 1e6);
+  const auto plot = dir / "results" / "case.png";
+  EXPECT_EQ(std::system(("/usr/bin/python3 " + std::string(COCOPP_TEST_SOURCE_DIR) +
+                         "/scripts/plot_results.py " + (dir / "results" / "case.h5").string() +
+                         " -o " + plot.string() + " > /dev/null")
+                            .c_str()),
+            0);
+  EXPECT_TRUE(fs::exists(plot));
   fs::remove_all(dir);
 }
 
