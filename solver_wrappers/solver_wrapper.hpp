@@ -35,6 +35,10 @@ class SolverWrapper {
   virtual std::string started() const { return name(); }
   /// Validate what can be validated without running (input files exist, executable found).
   virtual void check() const {}
+  /// What `cocopp check` adds to check(): read the solver's own input file as the solver will
+  /// (the built-in tube solvers), so that a typo there is found before a run. A run leaves it
+  /// to the solver, which reports the same error when it starts.
+  virtual void check_solver_input() const {}
   /// The solver's own input file (YAML), if the wrapper knows it: empty otherwise. Tools that
   /// change a solver's parameters (cocopp bench's solver_inputs) edit this file.
   virtual std::filesystem::path input_file() const { return {}; }

@@ -391,7 +391,10 @@ RunReport run_case(const std::filesystem::path& case_file, const RunOptions& opt
 int check_case(const std::filesystem::path& case_file) {
   try {
     const Case c = load_case(case_file);
-    for (const auto& solver : c.solvers) solver->check();
+    for (const auto& solver : c.solvers) {
+      solver->check();
+      solver->check_solver_input();
+    }
     check_results_files(c);
     fmt::print("{}: OK\n", case_file.string());
     print_header(c);

@@ -50,6 +50,7 @@ class MappedSolverWrapper : public SolverWrapper {
   std::string describe() const override { return name_ + " mapped onto " + inner_->describe(); }
   std::string started() const override { return inner_->started(); }
   void check() const override { inner_->check(); }
+  void check_solver_input() const override { inner_->check_solver_input(); }
   std::filesystem::path input_file() const override { return inner_->input_file(); }
 
   void initialize() override { inner_->initialize(); }

@@ -41,7 +41,7 @@ DefaultCommand pimple_foam_command(const std::vector<std::string>& boundary_name
   // read it while they load.
   const std::vector<std::pair<std::string, std::string>> environment = {
       {"WM_PROJECT_DIR", "/usr/share/openfoam"}};
-  if (cores == 1) return {application, "", patches, environment};
+  if (cores == 1) return {application, "", patches, environment, {}};
   std::vector<std::string> arguments = {"--allow-run-as-root",
                                         "--oversubscribe",
                                         "-np",
@@ -55,7 +55,7 @@ DefaultCommand pimple_foam_command(const std::vector<std::string>& boundary_name
                                         application,
                                         "-parallel"};
   arguments.insert(arguments.end(), patches.begin(), patches.end());
-  return {"mpirun", "", arguments, environment};
+  return {"mpirun", "", arguments, environment, {}};
 }
 
 class OpenFoamSolverWrapper : public ProcessSolverWrapper {

@@ -135,6 +135,8 @@ ProcessSolverWrapper::ProcessSolverWrapper(const Settings& settings, const RunSe
   working_directory_where_ = settings.where("working_directory");
   read_command(settings, default_command);
   if (default_command) default_environment_ = default_command->environment;
+  // The built-in check reads the default input file format: not with a command of the user's.
+  if (default_command && !settings.has("command")) check_input_ = default_command->check_input;
   transport_kind_ =
       protocol::parse_transport_kind(settings.get_choice("transport", "pipe", {"pipe", "file"}));
   timeout_ = settings.get_in_range("timeout", 600.0, Range::timeout());  // seconds
@@ -209,6 +211,10 @@ void ProcessSolverWrapper::check() const {
   const auto input = working_directory_ / input_file_;
   if (const auto why = path_problem(input, PathKind::kRegularFile); !why.empty())
     throw CaseError(input_file_where_ + ": " + solver + "input file " + input.string() + " " + why);
+}
+
+void ProcessSolverWrapper::check_solver_input() const {
+  if (check_input_ && !input_file_.empty()) check_input_(working_directory_ / input_file_);
 }
 
 std::filesystem::path ProcessSolverWrapper::input_file() const {

@@ -12,6 +12,7 @@
 // of its log. finalize() is safe to call at any time, more than once; the destructor calls it.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -36,6 +37,9 @@ struct DefaultCommand {
   /// Variables the solver needs, added to its environment unless the coupler's sets them
   /// (whether or not the case file gives its own `command`).
   std::vector<std::pair<std::string, std::string>> environment;
+  /// Reads the solver's input file as the solver will and throws CaseError (file, line, key)
+  /// if it would refuse it: `cocopp check` then finds a typo there, not `run`. Optional.
+  std::function<void(const std::filesystem::path&)> check_input;
 };
 
 class ProcessSolverWrapper : public SolverWrapper {
@@ -48,6 +52,7 @@ class ProcessSolverWrapper : public SolverWrapper {
 
   const std::string& name() const override { return name_; }
   void set_default_name(const std::string& name) override;
+  void check_solver_input() const override;
   std::string started() const override;
   std::string describe() const override;
   void check() const override;
@@ -105,6 +110,7 @@ class ProcessSolverWrapper : public SolverWrapper {
   std::string log_tail() const;
 
   // From the case file.
+  std::function<void(const std::filesystem::path&)> check_input_;
   std::string name_;
   bool name_given_ = false;      ///< `name` is in the case
   bool log_file_given_ = false;  ///< `log_file` is in the case

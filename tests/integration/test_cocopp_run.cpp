@@ -395,6 +395,19 @@ TEST(CocoppCheck, PathsThatCannotBeUsedAreNamedInWordsAtTheirKey) {
   fs::remove_all(dir);
 }
 
+// Issue 18: a typo in a built-in solver's own input file passed `check` and failed at `run`.
+TEST(CocoppCheck, ABuiltInSolversInputFileIsReadAsTheSolverReadsIt) {
+  const fs::path dir = copy_example("tube/flow_structure", "check_solver_input");
+  edit(dir / "flow" / "tube_flow.yaml", "cells: 100", "cels: 100");
+  const auto check = run_cocopp("check " + (dir / "case.yaml").string());
+  EXPECT_EQ(check.exit_code, 2) << check.output;
+  EXPECT_NE(check.output.find("tube_flow.yaml:5:1: missing required key 'cells'; is 'cels' "
+                              "(line 7) a misspelling of it?"),
+            std::string::npos)
+      << check.output;
+  fs::remove_all(dir);
+}
+
 // Issue 17, defect 9: command-line errors exit with the documented code 2 (CLI11's own were
 // 105 and 106); --help and --version with 0.
 TEST(CocoppRun, CommandLineErrorsExitWithTwo) {

@@ -415,6 +415,13 @@ TEST_F(ProcessSolverWrapperSetupTest, BuiltinTubeSolversDefaultToTheBinDirectory
       "input file " + (directory_ / "flow/tube_flow.yaml").string() + " does not exist");
   write_text(directory_ / "flow/tube_flow.yaml", "");
   EXPECT_NO_THROW(flow->check());
+  // check_solver_input() reads the input file as cocopp-tube-flow will.
+  EXPECT_CONTAINS(error_message<CaseError>([&] { flow->check_solver_input(); }),
+                  "tube_flow.yaml: the file must hold a mapping of keys");
+  const std::string input = read_text(std::filesystem::path(COCOPP_TEST_SOURCE_DIR) /
+                                      "examples/tube/flow_structure/flow/tube_flow.yaml");
+  write_text(directory_ / "flow/tube_flow.yaml", input);
+  EXPECT_NO_THROW(flow->check_solver_input());
   auto structure = create("type: tube_structure\nworking_directory: flow\n", run_);
   EXPECT_CONTAINS(error_message<CaseError>([&] { structure->check(); }), "cocopp-tube-structure");
 
