@@ -19,7 +19,9 @@ ctest --test-dir build --output-on-failure --timeout 300
 if [ "${COCOPP_SKIP_SANITIZE:-0}" != 1 ]; then
   # -O1 -g1 (line tables only) rather than RelWithDebInfo's -O2 -g: the sanitizer build's
   # compile time is most of CI's time; its reports keep file and line.
+  # No benchmarks here: no test runs them, and their compile time is CI time.
   BUILD_DIR=build-asan BUILD_TYPE=Sanitize scripts/build.sh -DCOCOPP_SANITIZE=ON \
+    -DCOCOPP_BUILD_BENCHMARKS=OFF \
     -DCMAKE_CXX_FLAGS_SANITIZE="-O1 -g1" -DCMAKE_C_FLAGS_SANITIZE="-O1 -g1" \
     -DCOCOPP_WERROR=ON "${solvers[@]}"
   # Whole example cases (label `long`: minutes of OpenFOAM and ccx time) ran in the Release
