@@ -18,6 +18,7 @@ void add_interface(const ResultsReader& reader, const std::string& interface, st
   if (!reader.has(interface)) return;
   const auto block_parts = reader.strings(interface, "block_model_part");
   const auto block_variables = reader.strings(interface, "block_variable");
+  const auto block_components = reader.numbers(interface, "block_components");
   for (std::size_t b = 0; b < block_parts.size(); ++b) {
     const std::string group = interface + "/" + block_parts[b];
     const auto ids_array = reader.dataset(group + "/ids");
@@ -34,8 +35,9 @@ void add_interface(const ResultsReader& reader, const std::string& interface, st
     }
     const auto values = reader.dataset(group + "/" + block_variables[b]);
     const std::size_t size = values.row_size();
-    const auto points = static_cast<Eigen::Index>(ids.size());
-    RowMatrix field(points, static_cast<Eigen::Index>(size / ids.size()));
+    // The components from the layout, not size / points: a model part may have no points.
+    RowMatrix field(static_cast<Eigen::Index>(ids.size()),
+                    static_cast<Eigen::Index>(block_components.at(b)));
     std::copy_n(values.values.begin() + static_cast<std::ptrdiff_t>(row * size), size,
                 field.data());
     part->fields.emplace_back(block_variables[b], std::move(field));
