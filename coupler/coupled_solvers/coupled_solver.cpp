@@ -140,7 +140,7 @@ StepRecord CoupledSolver::iterate_step(int step, double time) {
     accepted = x;
     const Eigen::VectorXd r = xt - x;
     record.residual_norms.push_back(r.norm());
-    unfinished_residuals_ = record.residual_norms;
+    unfinished_residuals_.push_back(record.residual_norms.back());
     record.iterations = iteration;
     if (iteration == 1) largest_first_residual_ = std::max(largest_first_residual_, r.norm());
     check_divergence(record.residual_norms, step, time, notes);

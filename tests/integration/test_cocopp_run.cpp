@@ -210,6 +210,16 @@ TEST(CocoppCheck, UnknownTypeWrongTypeAndRange) {
   fs::remove_all(dir);
 }
 
+namespace {
+/// `cocopp check` of `file` with its `original` text, `from` replaced by `to`.
+CommandResult check_edited(const fs::path& file, const std::string& original,
+                           const std::string& from, const std::string& to) {
+  write_text(file, original);
+  edit(file, from, to);
+  return run_cocopp("check " + file.string());
+}
+}  // namespace
+
 // Numbers `check` used to pass that broke the run (issue 17): an end time beyond the int
 // range of steps ("completed after 0 time steps"), a start step near it (negative step
 // numbers), a timeout whose deadline overflows the clock; and two solvers in one working
@@ -220,9 +230,7 @@ TEST(CocoppCheck, NumbersThatWouldBreakTheRunAndASharedWorkingDirectory) {
   const std::string original = read_text(file);
   auto expect_error = [&](const std::string& from, const std::string& to,
                           const std::string& message) {
-    write_text(file, original);
-    edit(file, from, to);
-    const auto check = run_cocopp("check " + file.string());
+    const auto check = check_edited(file, original, from, to);
     EXPECT_EQ(check.exit_code, 2) << check.output;
     EXPECT_NE(check.output.find(message), std::string::npos) << check.output;
   };
@@ -374,9 +382,7 @@ TEST(CocoppCheck, PathsThatCannotBeUsedAreNamedInWordsAtTheirKey) {
   fs::create_symlink("loop_a", dir / "loop_b");
   auto expect_error = [&](const std::string& from, const std::string& to,
                           const std::string& message) {
-    write_text(file, original);
-    edit(file, from, to);
-    const auto check = run_cocopp("check " + file.string());
+    const auto check = check_edited(file, original, from, to);
     EXPECT_EQ(check.exit_code, 2) << check.output;
     EXPECT_NE(check.output.find(message), std::string::npos) << check.output;
     EXPECT_EQ(check.output.find("filesystem error"), std::string::npos) << check.output;
