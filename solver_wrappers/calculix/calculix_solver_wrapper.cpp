@@ -15,6 +15,7 @@
 #include "solver_wrappers/calculix/ccx_run.hpp"
 #include "solver_wrappers/calculix/dat_file.hpp"
 #include "solver_wrappers/process/child_process.hpp"
+#include "solver_wrappers/process/process_solver_wrapper.hpp"
 #include "solver_wrappers/solver_error.hpp"
 
 namespace cocopp {
@@ -40,11 +41,17 @@ bool has_material_history(const calculix::InputDeck& deck) {
   return false;
 }
 
-/// ccx with cocopp's restart patch where scripts/install-calculix.sh built it, else the
-/// Debian package's ccx on PATH.
+/// ccx with cocopp's patches: in an install, <prefix>/libexec/cocopp/ccx next to the running
+/// cocopp's bin/ (so that the install can move); in the build tree, where
+/// scripts/install-calculix.sh built it; else the Debian package's ccx on PATH.
 std::string default_executable() {
-#ifdef COCOPP_PATCHED_CCX
   std::error_code error;
+  const std::filesystem::path bin = builtin_solver_directory();
+  if (!bin.empty()) {
+    const std::filesystem::path installed = bin.parent_path() / COCOPP_INSTALLED_CCX;
+    if (std::filesystem::is_regular_file(installed, error)) return installed.string();
+  }
+#ifdef COCOPP_PATCHED_CCX
   if (std::filesystem::is_regular_file(COCOPP_PATCHED_CCX, error)) return COCOPP_PATCHED_CCX;
 #endif
   return "ccx";

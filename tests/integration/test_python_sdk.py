@@ -1,0 +1,128 @@
+#!/usr/bin/python3
+"""The Python solver SDK (solver_wrappers/sdk/cocopp_sdk.py) against the coupler, ctest
+`python_sdk`: examples/external_solver/ring_wall.py coupled to the built-in tube flow over both
+transports (the built-in ring model's results to the bit), and what goes wrong on the solver's
+side reaching the user as the C++ SDK sends it: a rejected input, a wrong output size, an
+exception, a start outside cocopp, --help.
+
+usage: test_python_sdk.py BIN_DIR SOURCE_DIR
+"""
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+import h5py
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from test_install import check, same_results  # noqa: E402
+
+# Solvers that go wrong, each a ring_wall.RingWall with one method changed.
+FAULTS = {
+    "wrong_size": """
+    def solve(self, values):
+        return super().solve(values)[:3]
+""",
+    "exception": """
+    def initialize_step(self, step, time):
+        if step == 2:
+            raise RuntimeError("the wall cracked in step 2")
+""",
+    "rejects_once": """
+    rejected = False
+    def solve(self, values):
+        if self.step == 3 and not RingWall.rejected:
+            RingWall.rejected = True
+            raise sdk.InputRejected("this pressure would burst the wall")
+        return super().solve(values)
+    def initialize_step(self, step, time):
+        self.step = step
+""",
+}
+
+
+def cocopp_run(bin_dir, case_directory, case_file, env):
+    return subprocess.run([os.path.join(bin_dir, "cocopp"), "run", case_file],
+                          cwd=case_directory, env=env, stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT, text=True)
+
+
+def write_case(directory, name, command, transport="pipe", steps=100):
+    with open(os.path.join(directory, "case.yaml")) as original:
+        text = original.read()
+    text = text.replace("../build/ring-wall", command).replace("number_of_timesteps: 100",
+                                                               f"number_of_timesteps: {steps}")
+    text = text.replace("    working_directory: structure\n",
+                        f"    working_directory: structure\n    transport: {transport}\n")
+    with open(os.path.join(directory, name), "w") as case:
+        case.write(text)
+
+
+def main():
+    bin_dir, source = sys.argv[1], sys.argv[2]
+    env = dict(os.environ, COCOPP_BIN_DIR=bin_dir,
+               PYTHONPATH=os.path.join(source, "solver_wrappers", "sdk"),
+               PATH=f"/usr/bin:{os.environ.get('PATH', '')}")
+    with tempfile.TemporaryDirectory(prefix="cocopp-python-sdk-") as scratch:
+        reference = os.path.join(scratch, "flow_ringmodel")
+        shutil.copytree(os.path.join(source, "examples/tube/flow_ringmodel"), reference,
+                        ignore=shutil.ignore_patterns("results", "output", "*.log"))
+        result = cocopp_run(bin_dir, reference, "case.yaml", env)
+        check(result.returncode == 0, "the built-in ring model runs")
+        reference_h5 = os.path.join(reference, "results", "case.h5")
+
+        project = os.path.join(scratch, "external_solver")
+        shutil.copytree(os.path.join(source, "examples/external_solver"), project,
+                        ignore=shutil.ignore_patterns("results", "build", "*.log"))
+        for transport in ("pipe", "file"):
+            write_case(project, f"{transport}.yaml", "python3, ../ring_wall.py", transport)
+            result = cocopp_run(bin_dir, project, f"{transport}.yaml", env)
+            check(result.returncode == 0, f"ring_wall.py runs over the {transport} transport")
+            same_results(reference_h5, os.path.join(project, "results", f"{transport}.h5"),
+                         f"ring_wall.py, {transport} transport")
+
+        for fault, method in FAULTS.items():
+            with open(os.path.join(project, f"{fault}.py"), "w") as script:
+                script.write("import sys\nimport cocopp_sdk as sdk\nimport ring_wall\n\n"
+                             "class RingWall(ring_wall.RingWall):" + method +
+                             "\nring_wall.RingWall = RingWall\n"
+                             "sys.exit(ring_wall.main(sys.argv))\n")
+            write_case(project, f"{fault}.yaml", f"python3, ../{fault}.py", steps=5)
+        env_faults = dict(env, PYTHONPATH=env["PYTHONPATH"] + os.pathsep + project)
+
+        result = cocopp_run(bin_dir, project, "wrong_size.yaml", env_faults)
+        check(result.returncode != 0 and "solver 'wall' reported an error: solve() returned 3 "
+              "values; expected 300" in result.stdout,
+              "a wrong output size is named in the coupler's error")
+        result = cocopp_run(bin_dir, project, "exception.yaml", env_faults)
+        check(result.returncode != 0 and "the wall cracked in step 2" in result.stdout
+              and "after 1 time step" in result.stdout,
+              "an exception in the solver stops the run with its text")
+        with h5py.File(os.path.join(project, "results", "exception.h5"), "r") as results:
+            check(np.array_equal(results["steps/step"][:], [1]), "the step before it is kept")
+        result = cocopp_run(bin_dir, project, "rejects_once.yaml", env_faults)
+        with open(os.path.join(project, "results", "rejects_once.summary.json")) as summary:
+            check(result.returncode == 0 and "step 3: solver 'wall' rejected the input of "
+                  "iteration 1: the step from the last accepted input was shortened 1 time(s)"
+                  in summary.read(), "a rejected input is retried and the run completes")
+        with open(os.path.join(project, "structure", "wall.log")) as log:
+            check("input rejected: this pressure would burst the wall" in log.read(),
+                  "the reason is in the solver's log")
+
+        plain = {key: value for key, value in env.items() if not key.startswith("COCOPP_")}
+        script = os.path.join(project, "ring_wall.py")
+        result = subprocess.run(["/usr/bin/python3", script, "length=1", "diameter=1", "cells=2",
+                                 "rho_f=1", "e=1", "h=1"], env=plain, stdout=subprocess.PIPE,
+                                stderr=subprocess.STDOUT, text=True)
+        check(result.returncode == 2 and "run it through `cocopp run case.yaml`" in result.stdout,
+              "started outside cocopp: exit 2 and what to do")
+        result = subprocess.run(["/usr/bin/python3", script, "--help"], env=plain,
+                                stdout=subprocess.PIPE, text=True)
+        check(result.returncode == 0 and "usage: ring_wall.py" in result.stdout, "--help")
+    print("python_sdk: all checks passed")
+
+
+if __name__ == "__main__":
+    main()
