@@ -123,6 +123,7 @@ Case load_case(const std::filesystem::path& file, bool restart) {
       settings.has("results_name") ? settings.get_name("results_name", "") : file.stem().string();
   c.state_interval = settings.get_int_in_range("state_interval", 0, 0);
   c.vtk_output = settings.get<bool>("vtk_output", false);
+  c.watchpoints = Watchpoints(settings);
   prepare_restart(c, restart, settings);
 
   const Settings coupled = root.child("coupled_solver");

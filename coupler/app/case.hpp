@@ -8,6 +8,7 @@
 #include "core/case/settings.hpp"
 #include "coupler/coupled_solvers/coupled_solver.hpp"
 #include "coupler/results/state_file.hpp"
+#include "coupler/results/watchpoints.hpp"
 #include "solver_wrappers/solver_wrapper.hpp"
 
 namespace cocopp {
@@ -22,6 +23,7 @@ struct Case {
   std::string results_where;  ///< "case.yaml:4:3: 'settings.results_directory'" for messages
   std::string results_name;   ///< file stem of the HDF5 file and the JSON summary
   bool vtk_output = false;    ///< also write the interface for ParaView every step (VtkSeries)
+  Watchpoints watchpoints;    ///< settings.watchpoints: variables at points, every step
   int state_interval = 0;     ///< also save the coupled-solver state every this many steps
   /// The solvers' working directories named in the case (the run locks them).
   std::vector<std::filesystem::path> working_directories;

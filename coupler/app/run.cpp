@@ -16,6 +16,7 @@
 #include "coupler/results/run_summary.hpp"
 #include "coupler/results/state_file.hpp"
 #include "coupler/results/vtk_series.hpp"
+#include "coupler/results/watchpoint_csv.hpp"
 #include "solver_wrappers/process/child_process.hpp"
 #include "solver_wrappers/solver_error.hpp"
 
@@ -150,13 +151,21 @@ class Run {
     coupled.initialize(*case_.solvers[0], *case_.solvers[1]);
     fmt::print("  started        : {}, {}\n", case_.solvers[0]->started(),
                case_.solvers[1]->started());
+    const int continue_after = case_.restart ? case_.restart->step : -1;
+    if (!case_.watchpoints.empty()) {
+      case_.watchpoints.attach(coupled.x(), coupled.y());
+      watchpoint_csv_ = std::make_unique<WatchpointCsv>(case_.results_directory, case_.results_name,
+                                                        case_.watchpoints.layout(), continue_after);
+    }
     if (case_.restart) {
       coupled.load_state(case_.restart->state);
       writer_ = std::make_unique<ResultsWriter>(results_path(".h5"), describe_run(case_),
-                                                coupled.x(), coupled.y(), case_.restart->step);
+                                                coupled.x(), coupled.y(), case_.restart->step,
+                                                case_.watchpoints.layout());
     } else {
-      writer_ = std::make_unique<ResultsWriter>(results_path(".h5"), describe_run(case_),
-                                                coupled.x(), coupled.y());
+      writer_ =
+          std::make_unique<ResultsWriter>(results_path(".h5"), describe_run(case_), coupled.x(),
+                                          coupled.y(), case_.watchpoints.layout());
     }
     if (case_.vtk_output)
       vtk_ = std::make_unique<VtkSeries>(case_.results_directory, case_.results_name,
@@ -168,7 +177,11 @@ class Run {
     for (int step = first; step <= last; ++step) {
       current_step_ = step;
       const StepRecord record = coupled.solve_step(step, step * case_.run.delta_t);
-      writer_->write_step(record, coupled.x(), coupled.y());
+      const Interface& watched = case_.watchpoints.empty()
+                                     ? case_.watchpoints.layout()
+                                     : case_.watchpoints.sample(coupled.x(), coupled.y());
+      writer_->write_step(record, coupled.x(), coupled.y(), watched);
+      if (watchpoint_csv_) watchpoint_csv_->write_step(step, record.time, watched);
       if (vtk_) vtk_->write_step(step, record.time, vtk_parts(coupled.x(), coupled.y()));
       summary_.add_step(record);
       iterations_ += record.iterations;
@@ -315,6 +328,8 @@ class Run {
                                      double(iterations_) / steps, iterations_));
     if (writer_) line("results", writer_->path().string());
     if (vtk_) line("ParaView", vtk_->collection().string());
+    if (watchpoint_csv_)
+      for (const auto& file : watchpoint_csv_->files()) line("watchpoint", file.string());
     if (state_saved_) line("solver state", results_path(".state.h5").string());
     line("summary", results_path(".summary.json").string());
     std::fflush(stdout);  // the error comes last, after the summary, also when piped
@@ -325,6 +340,7 @@ class Run {
   RunSummary summary_;
   std::unique_ptr<ResultsWriter> writer_;
   std::unique_ptr<VtkSeries> vtk_;
+  std::unique_ptr<WatchpointCsv> watchpoint_csv_;
   Clock::time_point start_ = Clock::now();
   long iterations_ = 0;
   double algorithm_time_ = 0.0;

@@ -115,14 +115,17 @@ std::string describe(const std::vector<Interface::Block>& blocks) {
 
 constexpr const char* kXRole = "displacement interface: input of the flow solver";
 constexpr const char* kYRole = "loads interface: output of the flow solver";
+constexpr const char* kWatchpointsRole =
+    "watchpoints: the variables of x and y interpolated at points (settings.watchpoints)";
 
 }  // namespace
 
 ResultsWriter::ResultsWriter(const std::filesystem::path& file, const RunDescription& run,
-                             const Interface& x, const Interface& y)
+                             const Interface& x, const Interface& y, const Interface& watchpoints)
     : path_(file), solver_count_(run.solver_names.size()) {
   check_names(x);
   check_names(y);
+  check_names(watchpoints);
   if (path_.has_parent_path()) std::filesystem::create_directories(path_.parent_path());
   const QuietErrors quiet;
   try {
@@ -130,6 +133,8 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& file, const RunDescrip
     write_run_attributes(run);
     x_blocks_ = create_interface("x", kXRole, x);
     y_blocks_ = create_interface("y", kYRole, y);
+    if (!watchpoints.parts().empty())
+      watchpoint_blocks_ = create_interface("watchpoints", kWatchpointsRole, watchpoints);
     create_step_series();
     flush();
   } catch (const H5Error& error) {
@@ -139,7 +144,8 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& file, const RunDescrip
 }
 
 ResultsWriter::ResultsWriter(const std::filesystem::path& file, const RunDescription& run,
-                             const Interface& x, const Interface& y, int continue_after_step)
+                             const Interface& x, const Interface& y, int continue_after_step,
+                             const Interface& watchpoints)
     : path_(file), solver_count_(run.solver_names.size()) {
   check_continuable(run, continue_after_step);
   // check_continuable left rows_ at the rows to keep: the steps up to continue_after_step.
@@ -149,6 +155,8 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& file, const RunDescrip
                      H5Fclose);
     x_blocks_ = open_interface("x", x);
     y_blocks_ = open_interface("y", y);
+    if (!watchpoints.parts().empty())
+      watchpoint_blocks_ = open_interface("watchpoints", watchpoints);
     open_step_series();
     // Only now that everything fits: the file changes.
     mark_continued(continue_after_step);
@@ -245,7 +253,7 @@ void ResultsWriter::truncate() {
             "truncating " + object_name(series.dataset.get()));
   };
   const auto rows = static_cast<hsize_t>(rows_);
-  for (const auto* blocks : {&x_blocks_, &y_blocks_})
+  for (const auto* blocks : {&x_blocks_, &y_blocks_, &watchpoint_blocks_})
     for (const auto& b : *blocks) cut(b.series, rows);
   for (const Series* series :
        {&steps_.step, &steps_.time, &steps_.iterations, &steps_.converged, &steps_.wall_time,
@@ -365,15 +373,17 @@ void ResultsWriter::create_step_series() {
   steps_.count = create_series(r, "count", H5T_STD_I64LE, {}, nullptr);
 }
 
-void ResultsWriter::write_step(const StepRecord& record, const Interface& x, const Interface& y) {
+void ResultsWriter::write_step(const StepRecord& record, const Interface& x, const Interface& y,
+                               const Interface& watchpoints) {
   if (!is_open())
     throw std::logic_error("results file '" + path_.string() + "': write_step after close");
-  check_step(record, x, y);
+  check_step(record, x, y, watchpoints);
   check_space(record, x, y);
   const QuietErrors quiet;
   try {
     write_interface(x_blocks_, x);
     write_interface(y_blocks_, y);
+    if (!watchpoint_blocks_.empty()) write_interface(watchpoint_blocks_, watchpoints);
     write_residuals(record);
     write_step_scalars(record);
     flush();
@@ -384,8 +394,8 @@ void ResultsWriter::write_step(const StepRecord& record, const Interface& x, con
   norms_written_ += record.residual_norms.size();
 }
 
-void ResultsWriter::check_step(const StepRecord& record, const Interface& x,
-                               const Interface& y) const {
+void ResultsWriter::check_step(const StepRecord& record, const Interface& x, const Interface& y,
+                               const Interface& watchpoints) const {
   const auto check_layout = [&](const char* name, const std::vector<BlockSeries>& expected,
                                 const Interface& given) {
     std::vector<Interface::Block> blocks;
@@ -399,6 +409,7 @@ void ResultsWriter::check_step(const StepRecord& record, const Interface& x,
   };
   check_layout("x", x_blocks_, x);
   check_layout("y", y_blocks_, y);
+  if (!watchpoint_blocks_.empty()) check_layout("watchpoints", watchpoint_blocks_, watchpoints);
   if (record.solver_times.size() != solver_count_)
     throw std::invalid_argument(
         "results file '" + path_.string() + "': step " + std::to_string(record.step) + " has " +

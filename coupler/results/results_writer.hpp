@@ -19,16 +19,17 @@ class ResultsWriter {
  public:
   /// Creates the directory and the file (truncating an existing one) and writes the run
   /// description and the layout of x (the displacement interface the flow solver takes) and y
-  /// (the loads interface). Throws std::invalid_argument for names HDF5 cannot hold and
+  /// (the loads interface), and of the watchpoints (Watchpoints::layout(), group /watchpoints;
+  /// none if empty). Throws std::invalid_argument for names HDF5 cannot hold and
   /// std::runtime_error if the file cannot be written.
   ResultsWriter(const std::filesystem::path& file, const RunDescription& run, const Interface& x,
-                const Interface& y);
+                const Interface& y, const Interface& watchpoints = {});
   /// A run restarted after `step`: opens the existing file of the run it continues, checks
   /// that it was written for the same time step and interfaces and holds `step`, drops the
   /// rows after `step` (computed again now) and appends from there. Throws
   /// std::runtime_error naming the file and what does not fit.
   ResultsWriter(const std::filesystem::path& file, const RunDescription& run, const Interface& x,
-                const Interface& y, int continue_after_step);
+                const Interface& y, int continue_after_step, const Interface& watchpoints = {});
   /// Closes with status "incomplete" if close() was not called; never throws.
   ~ResultsWriter();
   ResultsWriter(const ResultsWriter&) = delete;
@@ -36,8 +37,10 @@ class ResultsWriter {
 
   /// Appends one step and flushes the file. x and y must have the layout given at construction
   /// and record.solver_times one entry per solver (std::invalid_argument otherwise; nothing is
-  /// written then). If writing fails half-way, the next call overwrites the partial row.
-  void write_step(const StepRecord& record, const Interface& x, const Interface& y);
+  /// written then), and so must `watchpoints` where the file has watchpoints. If writing fails
+  /// half-way, the next call overwrites the partial row.
+  void write_step(const StepRecord& record, const Interface& x, const Interface& y,
+                  const Interface& watchpoints = {});
 
   /// Writes the final status ("completed", "diverged", "solver_failed", "interrupted", ...) and
   /// why the run stopped, and closes the file. Calling it again does nothing.
@@ -84,7 +87,8 @@ class ResultsWriter {
   void create_step_series();
   static Series create_series(hid_t group, const char* name, hid_t file_type,
                               std::vector<hsize_t> row_shape, const char* unit);
-  void check_step(const StepRecord& record, const Interface& x, const Interface& y) const;
+  void check_step(const StepRecord& record, const Interface& x, const Interface& y,
+                  const Interface& watchpoints) const;
   /// Throws std::runtime_error if the disk has no clear room for the step (see the .cpp).
   void check_space(const StepRecord& record, const Interface& x, const Interface& y) const;
   /// Room kept for closing the file (attributes, metadata flushed at close).
@@ -106,7 +110,7 @@ class ResultsWriter {
 
   // Declared first so that it is destroyed last: the datasets below live in it.
   H5Handle file_;
-  std::vector<BlockSeries> x_blocks_, y_blocks_;
+  std::vector<BlockSeries> x_blocks_, y_blocks_, watchpoint_blocks_;
   StepSeries steps_;
 };
 

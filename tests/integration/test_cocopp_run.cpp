@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <sstream>
 #include <thread>
 
 #include "tests/integration/run_helpers.hpp"
@@ -66,6 +67,50 @@ TEST(CocoppRun, VerboseShowsEveryCouplingIteration) {
   EXPECT_NE(run.output.find("    step 1 iteration   1  residual 5.637e-05 (relative 1.00e+00)"),
             std::string::npos)
       << run.output;
+  fs::remove_all(dir);
+}
+
+// settings.watchpoints: at a cell centre the nearest point's values, in the CSV file and in the
+// results file alike, step by step.
+TEST(CocoppRun, AWatchpointAtAPointHoldsThatPointsValues) {
+  const fs::path dir = copy_example("tube/flow_structure", "fs_watchpoint");
+  edit(dir / "case.yaml", "number_of_timesteps: 100",
+       "number_of_timesteps: 20\n  watchpoints: [{name: mid, coordinates: [0, 0.005, 0.00025]}]");
+  const CommandResult run = run_cocopp("run --quiet " + (dir / "case.yaml").string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const fs::path results = dir / "results" / "case.h5";
+  EXPECT_NE(run.output.find("watchpoint        : " + (dir / "results").string() +
+                            "/case_watchpoint_mid.csv"),
+            std::string::npos)
+      << run.output;
+  // Cell 50 of 100 is centred on z = 0.00025.
+  const auto coordinates = read_dataset(results, "x/wall/coordinates");
+  ASSERT_DOUBLE_EQ(coordinates[3 * 50 + 2], 0.00025);
+  const auto displacement = read_dataset(results, "x/wall/displacement");
+  const auto pressure = read_dataset(results, "y/wall/pressure");
+  const auto watched_displacement = read_dataset(results, "watchpoints/mid/displacement");
+  const auto watched_pressure = read_dataset(results, "watchpoints/mid/pressure");
+  ASSERT_EQ(watched_pressure.size(), 20u);
+  std::istringstream csv(read_text(dir / "results" / "case_watchpoint_mid.csv"));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line,
+            "step,time,displacement_x,displacement_y,displacement_z,pressure,traction_x,"
+            "traction_y,traction_z");
+  for (int step = 1; step <= 20; ++step) {
+    const std::size_t row = step - 1;
+    EXPECT_EQ(watched_pressure[row], pressure[row * 100 + 50]) << step;
+    EXPECT_EQ(watched_displacement[3 * row + 1], displacement[row * 300 + 3 * 50 + 1]) << step;
+    ASSERT_TRUE(std::getline(csv, line));
+    std::vector<double> columns;
+    std::istringstream fields(line);
+    for (std::string field; std::getline(fields, field, ',');) columns.push_back(std::stod(field));
+    ASSERT_EQ(columns.size(), 9u) << line;
+    EXPECT_EQ(columns[0], step);
+    EXPECT_EQ(columns[3], watched_displacement[3 * row + 1]) << line;
+    EXPECT_EQ(columns[5], watched_pressure[row]) << line;
+  }
+  EXPECT_FALSE(std::getline(csv, line)) << "one row per step";
   fs::remove_all(dir);
 }
 

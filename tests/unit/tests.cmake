@@ -57,9 +57,10 @@ cocopp_unit_test(coupler/coupled_solvers/models
   SOURCES test_ls.cpp test_multi_vector.cpp test_qr_factorization.cpp LIBS cocopp_coupling)
 cocopp_unit_test(coupler/convergence SOURCES test_convergence.cpp LIBS cocopp_coupling)
 cocopp_unit_test(coupler/predictors SOURCES test_predictors.cpp LIBS cocopp_coupling)
-# The HDF5 results file (read back with the C API and with h5py) and the JSON run summary.
+# The HDF5 results file (read back with the C API and with h5py), the JSON run summary and the
+# watchpoints.
 cocopp_unit_test(coupler/results
   SOURCES test_results_writer.cpp test_results_reader.cpp test_run_summary.cpp
-          test_results_python.cpp
+          test_results_python.cpp test_watchpoints.cpp
   LIBS cocopp_coupling)
 cocopp_unit_test(coupler/app SOURCES test_components.cpp LIBS cocopp_app)
