@@ -12,7 +12,7 @@ packages=(
   libeigen3-dev libyaml-cpp-dev libhdf5-dev hdf5-tools
   libcli11-dev libfmt-dev nlohmann-json3-dev libnanoflann-dev
   googletest libgtest-dev libgmock-dev libbenchmark-dev
-  python3-h5py python3-matplotlib python3-numpy python3-yaml
+  python3-h5py python3-matplotlib python3-numpy python3-yaml python3-pil
   python3-vtk9  # a real VTK reader for the ParaView output's test
   clang-format
   clang-14 libclang-rt-14-dev  # libFuzzer for the fuzz targets (scripts/fuzz.sh)

@@ -1,19 +1,23 @@
 #!/usr/bin/env python3
-"""Plot the result of `cocopp bench`: error against the reference versus wall time.
+"""Plot the result of `cocopp bench`: the error against the reference versus wall time,
+coupling iterations and the solvers' time, one panel each.
 
-Reads <output_directory>/bench.json (written by cocopp bench, docs/bench.md) and draws a
-log-log scatter of the relative displacement error against the wall time of every run, each
-point labelled with its variant. An error of exactly 0 (a run identical to the reference)
-cannot be shown on a log axis: such runs are drawn on the bottom edge with the label
-"(= reference)". Runs without an error (diverged before the first step, other delta_t) are
-listed under the plot instead.
+Reads <output_directory>/bench.json (written by cocopp bench, docs/bench.md); each point is a
+run labelled with its variant. Wall time includes the solvers' start-up, which dominates short
+runs; the iterations are free of timing noise; the solvers' time is what the iterations cost.
+An error of exactly 0 (a run identical to the reference) is drawn on the bottom edge with the
+label "(= reference)"; runs without an error are listed under the plot. The figure is made by
+the module cocopp_plot (next to this script, or installed).
 
     /usr/bin/python3 scripts/plot_bench.py bench_results/bench.json -o bench_results/bench.png
 """
 import argparse
-import json
-import math
+import os
 import sys
+
+sys.path[:0] = [os.path.dirname(os.path.realpath(__file__)),  # the source tree: scripts/
+                os.path.join(os.path.dirname(os.path.realpath(__file__)),  # an install
+                             "..", "..", "lib", "python3", "dist-packages")]
 
 
 def parse_arguments(argv):
@@ -27,48 +31,14 @@ def parse_arguments(argv):
     return parser.parse_args(argv)
 
 
-def finite(value):
-    return value is not None and math.isfinite(value)
-
-
 def main(argv):
     args = parse_arguments(argv)
     import matplotlib
 
     matplotlib.use("Agg")  # no display needed
-    import matplotlib.pyplot as plt
+    from cocopp_plot import bench
 
-    with open(args.bench_json) as f:
-        bench = json.load(f)
-    key = args.error + "_error"
-    runs = [r for r in bench["runs"] if args.include_reference or r["name"] != "reference"]
-    shown = [r for r in runs if finite(r[key]) and finite(r["wall_time"]) and r["wall_time"] > 0]
-    missing = [r for r in runs if r not in shown]
-    positive = [r[key] for r in shown if r[key] > 0]
-    floor = min(positive) / 10 if positive else 1e-16
-
-    figure, axes = plt.subplots(figsize=(7, 5))
-    for run in shown:
-        error = run[key] if run[key] > 0 else floor
-        marker = "o" if run["completed"] else "x"
-        axes.scatter(run["wall_time"], error, marker=marker, s=40)
-        label = run["name"] + ("" if run[key] > 0 else " (= reference)")
-        if not run["completed"]:
-            label += f" ({run['status']} after {run['steps_completed']} steps)"
-        axes.annotate(label, (run["wall_time"], error), textcoords="offset points", xytext=(5, 4),
-                      fontsize=8)
-    axes.set_xscale("log")
-    axes.margins(x=0.2, y=0.2)  # room for the labels
-    axes.set_yscale("log")
-    axes.set_xlabel("wall time [s]")
-    axes.set_ylabel(f"relative {args.error} error (L2 over space and time)")
-    axes.set_title(f"cocopp bench: {bench.get('bench_file', '')}", fontsize=9)
-    axes.grid(True, which="both", alpha=0.3)
-    if missing:
-        text = "no error: " + ", ".join(f"{r['name']} ({r['status']})" for r in missing)
-        figure.text(0.01, 0.01, text, fontsize=8)
-    figure.tight_layout(rect=(0, 0.04 if missing else 0, 1, 1))
-    figure.savefig(args.output, dpi=120)
+    bench.plot_bench(bench.load(args.bench_json), args.output, args.error, args.include_reference)
     print(f"wrote {args.output}")
     return 0
 

@@ -1,29 +1,35 @@
 #!/usr/bin/python3
-"""Plot a cocopp results file: the residual history of every time step and the interface
-displacement and pressure at chosen steps, to one PNG.
+"""Plot a cocopp results file: residuals against the criterion's tolerance, iterations per
+step, and the interface at chosen steps, to one PNG; on request also the history at a point, a
+space-time map and an animation of a variable along the interface.
 
-Needs h5py and matplotlib (Debian: python3-h5py, python3-matplotlib). The file layout is
-described in docs/results.md. A running cocopp keeps its results file locked: use --live to
-read it anyway (all steps up to the last flush), or plot a copy.
+Needs h5py and matplotlib (Debian: python3-h5py, python3-matplotlib); the figures are in the
+module cocopp_plot (next to this script, or installed). The file layout is in docs/results.md.
+A running cocopp keeps its results file locked: use --live to read it anyway.
 
 Examples:
-  plot_results.py results/case.h5                       # first, middle and last step
+  plot_results.py results/case.h5                       # results/case.png
   plot_results.py results/case.h5 --steps 10 20 -o tube.png
-  plot_results.py results/case.h5 --component 1 --axis z
+  plot_results.py results/case.h5 --history middle      # a watchpoint: results/case_history.png
+  plot_results.py results/case.h5 --point 0 0.005 0     # the interface point nearest to it
+  plot_results.py results/case.h5 --space-time pressure # results/case_space_time_pressure.png
+  plot_results.py results/case.h5 --animate displacement  # results/case_displacement.gif
   plot_results.py results/case.h5 --live                # while the run still writes it
 """
 import argparse
+import os
 import sys
 
-import h5py
-import matplotlib
-import matplotlib.ticker
-import numpy as np
+sys.path[:0] = [os.path.dirname(os.path.realpath(__file__)),  # the source tree: scripts/
+                os.path.join(os.path.dirname(os.path.realpath(__file__)),  # an install
+                             "..", "..", "lib", "python3", "dist-packages")]
+import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")  # files only; no display needed
-import matplotlib.pyplot as plt  # noqa: E402  (after choosing the backend)
+import matplotlib.pyplot as plt  # noqa: E402
 
-AXES = {"x": 0, "y": 1, "z": 2}
+from cocopp_plot import history, interface, residuals  # noqa: E402
+from cocopp_plot.results import AXES, ResultsFile  # noqa: E402
 
 
 def parse_arguments(argv):
@@ -46,112 +52,66 @@ def parse_arguments(argv):
                         help="component of vector variables (default: the one varying most)")
     parser.add_argument("--axis", choices=sorted(AXES),
                         help="coordinate along the interface (default: the longest extent)")
+    parser.add_argument("--history", metavar="WATCHPOINT",
+                        help="also plot a watchpoint's variables over time (RESULTS_history.png)")
+    parser.add_argument("--point", type=float, nargs=3, metavar=("X", "Y", "Z"),
+                        help="also plot the variables over time at the interface point nearest "
+                             "to X Y Z (RESULTS_history.png)")
+    parser.add_argument("--space-time", metavar="VARIABLE",
+                        help="also plot VARIABLE along the interface against time "
+                             "(RESULTS_space_time_VARIABLE.png)")
+    parser.add_argument("--animate", metavar="VARIABLE",
+                        help="also animate VARIABLE along the interface (RESULTS_VARIABLE.gif)")
+    parser.add_argument("--movie", metavar="FILE",
+                        help="the animation's file: .gif, or .mp4 with ffmpeg installed")
     parser.add_argument("--live", action="store_true",
                         help="open without HDF5 file locking, to plot a file a run still writes")
     return parser.parse_args(argv)
 
 
-def rows_of(f, steps):
-    """Row indices of the requested step numbers; exits with the available range if absent."""
-    numbers = f["steps/step"][:]
-    if len(numbers) == 0:
-        if "unfinished_step" in f:  # the run stopped in its first step: its residuals only
-            return [], []
-        sys.exit("the results file has no time steps yet")
-    if not steps:
-        steps = sorted({int(numbers[0]), int(numbers[len(numbers) // 2]), int(numbers[-1])})
-    missing = [s for s in steps if s not in numbers]
-    if missing:
-        sys.exit(f"step(s) {missing} not in the file; it has steps {numbers[0]} .. {numbers[-1]}")
-    return steps, [int(np.flatnonzero(numbers == s)[0]) for s in steps]
-
-
-def plot_residuals(ax, f):
-    numbers = f["steps/step"][:]
-    norms, offset, count = f["residuals/norms"][:], f["residuals/offset"][:], f["residuals/count"][:]
-    converged = f["steps/converged"][:]
-    colors = plt.cm.viridis(np.linspace(0, 1, max(len(numbers), 1)))
-    for row, step in enumerate(numbers):
-        history = norms[offset[row]:offset[row] + count[row]]
-        history = np.where(np.isfinite(history) & (history > 0), history, np.nan)
-        ax.semilogy(np.arange(1, len(history) + 1), history, "-" if converged[row] else "--",
-                    marker="." if converged[row] else "x", color=colors[row], linewidth=0.8)
-    if len(numbers):
-        mappable = plt.cm.ScalarMappable(
-            cmap="viridis", norm=matplotlib.colors.Normalize(numbers[0], numbers[-1]))
-        plt.colorbar(mappable, ax=ax, label="time step")
-    if "unfinished_step" in f:  # the step the run stopped in (diverged, solver failed, ...)
-        unfinished = f["unfinished_step"]
-        history = unfinished["residual_norms"][:]
-        history = np.where(np.isfinite(history) & (history > 0), history, np.nan)
-        ax.semilogy(np.arange(1, len(history) + 1), history, "-", marker="o", color="red",
-                    linewidth=1.5, label=f"step {unfinished.attrs['step']}: the run stopped here")
-        ax.legend()
-    ax.set_xlabel("coupling iteration")
-    ax.set_ylabel("residual 2-norm")
-    ax.set_title("residual history per time step (x, dashed: accepted unconverged)")
-    ax.xaxis.set_major_locator(matplotlib.ticker.MaxNLocator(integer=True))
-    ax.grid(True, which="both", alpha=0.3)
-
-
-def find_part(group, variable, wanted):
-    for part in group.attrs["model_parts"]:
-        if (wanted is None or part == wanted) and variable in group[part]:
-            return part
-    return None
-
-
-def plot_interface(ax, f, name, variable, rows, steps, args):
-    group = f[name]
-    part = find_part(group, variable, args.model_part)
-    if not rows:
-        ax.text(0.5, 0.5, "no completed time step", ha="center", transform=ax.transAxes)
-        ax.set_axis_off()
-        return
-    if part is None:
-        ax.text(0.5, 0.5, f"no '{variable}' in interface {name}", ha="center",
-                transform=ax.transAxes)
-        ax.set_axis_off()
-        return
-    data = group[part][variable][sorted(set(rows))]  # (rows, points, components)
-    data = data[[sorted(set(rows)).index(r) for r in rows]]
-    coordinates = group[part]["coordinates"][:]
-    axis = AXES[args.axis] if args.axis else int(np.argmax(np.ptp(coordinates, axis=0)))
-    component = args.component
-    if component is None:
-        component = int(np.argmax(np.ptp(data.reshape(-1, data.shape[2]), axis=0)))
-    component = min(component, data.shape[2] - 1)
-    order = np.argsort(coordinates[:, axis])
-    for row_data, step in zip(data, steps):
-        ax.plot(coordinates[order, axis], row_data[order, component], marker=".",
-                label=f"step {step}")
-    unit = group[part][variable].attrs.get("unit", "")
-    label = variable if data.shape[2] == 1 else f"{variable}[{component}]"
-    ax.set_xlabel(f"initial {'xyz'[axis]} (m)")
-    ax.set_ylabel(f"{label} ({unit})")
-    ax.set_title(f"{name}/{part}/{variable}")
-    ax.legend()
-    ax.grid(True, alpha=0.3)
+def overview(results, args, output):
+    steps, rows = results.rows_of(args.steps)
+    figure, axes = plt.subplots(2, 2, figsize=(13, 9), constrained_layout=True)
+    residuals.plot_residuals(axes[0, 0], results)
+    residuals.plot_iterations(axes[0, 1], results)
+    for ax, name, variable in ((axes[1, 0], "x", args.displacement),
+                               (axes[1, 1], "y", args.pressure)):
+        interface.plot_snapshots(ax, results, name, variable, steps, rows, args.model_part,
+                                 args.component, args.axis)
+    figure.suptitle(results.title)
+    figure.savefig(output, dpi=120)
+    plt.close(figure)
+    print(f"wrote {output}")
 
 
 def main(argv=None):
     args = parse_arguments(argv)
-    output = args.output or str(args.results).rsplit(".", 1)[0] + ".png"
-    try:
-        f = h5py.File(args.results, "r", locking=False) if args.live else h5py.File(args.results, "r")
-    except OSError as error:
-        hint = " (a running cocopp holds it: try --live)" if "lock" in str(error) else ""
-        sys.exit(f"cannot open {args.results}: {error}{hint}")
-    with f:
-        steps, rows = rows_of(f, args.steps)
-        figure, axes = plt.subplots(3, 1, figsize=(8, 11), constrained_layout=True)
-        plot_residuals(axes[0], f)
-        plot_interface(axes[1], f, "x", args.displacement, rows, steps, args)
-        plot_interface(axes[2], f, "y", args.pressure, rows, steps, args)
-        figure.suptitle(f"{f.attrs['case_file']} ({f.attrs['coupled_solver']}, "
-                        f"status {f.attrs['status']})")
-    figure.savefig(output, dpi=120)
-    print(f"wrote {output}")
+    stem = str(args.results).rsplit(".", 1)[0]
+    with ResultsFile(args.results, args.live) as results:
+        if len(results.steps) == 0 and not results.unfinished_step():
+            sys.exit("the results file has no time steps yet")
+        overview(results, args, args.output or stem + ".png")
+        if args.history or args.point:
+            series, where = (history.watchpoint_series(results, args.history) if args.history
+                             else history.nearest_point_series(results, args.point))
+            figure, axes = plt.subplots(len(series), 1, figsize=(8, 2.6 * len(series)),
+                                        sharex=True, constrained_layout=True, squeeze=False)
+            history.plot_history(list(axes[:, 0]), series, where)
+            figure.suptitle(results.title, fontsize=9)
+            figure.savefig(stem + "_history.png", dpi=120)
+            print(f"wrote {stem}_history.png")
+        if args.space_time:
+            figure, ax = plt.subplots(figsize=(8, 6), constrained_layout=True)
+            interface.plot_space_time(ax, results, args.space_time, args.model_part,
+                                      args.component, args.axis)
+            output = f"{stem}_space_time_{args.space_time}.png"
+            figure.savefig(output, dpi=120)
+            print(f"wrote {output}")
+        if args.animate:
+            output = args.movie or f"{stem}_{args.animate}.gif"
+            frames = interface.animate(results, args.animate, output, args.model_part,
+                                       args.component, args.axis)
+            print(f"wrote {output} ({frames} frames)")
     return 0
 
 

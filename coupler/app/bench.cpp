@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <cstdio>
 
 #include "coupler/app/bench_comparison.hpp"
@@ -18,13 +19,27 @@ namespace cocopp {
 namespace {
 
 /// Run every case in turn; returns false if the bench has to stop (interrupt, no reference).
-bool run_all(const std::vector<PlannedRun>& runs, std::vector<BenchRow>& rows) {
+bool run_all(const std::vector<PlannedRun>& runs, std::vector<BenchRow>& rows,
+             const BenchOptions& options) {
   for (std::size_t i = 0; i < runs.size(); ++i) {
-    fmt::print("\n=== bench run {} of {}: {} ===\n", i + 1, runs.size(),
-               run_label(runs[i].case_name, runs[i].name));
+    const std::string name = run_label(runs[i].case_name, runs[i].name);
+    if (options.quiet)
+      fmt::print("bench run {:>{}} of {}: {:<28} ", i + 1, std::to_string(runs.size()).size(),
+                 runs.size(), name);
+    else
+      fmt::print("\n=== bench run {} of {}: {} ===\n", i + 1, runs.size(), name);
     std::fflush(stdout);
-    const RunReport report = run_case(runs[i].case_file, RunOptions{true});
+    RunOptions run_options;
+    run_options.quiet = true;
+    run_options.silent = options.quiet;
+    const RunReport report = run_case(runs[i].case_file, run_options);
     BenchRow row = make_row(runs[i], report);
+    if (options.quiet)
+      fmt::print("{} after {} steps, {} it/step, {:.3f} s\n", row.outcome, row.steps_completed,
+                 std::isfinite(row.average_iterations)
+                     ? fmt::format("{:.2f}", row.average_iterations)
+                     : std::string("-"),
+                 std::isfinite(row.wall_time) ? row.wall_time : 0.0);
     // A solver names its input file relative to its directory: say which copy it read.
     if (report.outcome.status == RunStatus::kSolverFailed && !runs[i].changed_inputs.empty())
       add_note(row, "input changed by the bench: " + runs[i].changed_inputs);
@@ -53,7 +68,7 @@ int run_bench(const fs::path& bench_file, const BenchOptions& options) {
     return 2;
   }
   std::vector<BenchRow> rows;
-  const bool finished = run_all(runs, rows);
+  const bool finished = run_all(runs, rows, options);
   compare_with_references(bench, runs, rows);
   print_table(rows);
   const nlohmann::json reference = describe_references(bench);

@@ -6,7 +6,8 @@
 namespace cocopp {
 
 struct BenchOptions {
-  bool plot = true;  ///< draw bench.png with scripts/plot_bench.py
+  bool plot = true;    ///< draw bench.png with scripts/plot_bench.py
+  bool quiet = false;  ///< one line per run instead of each run's header and summary
 };
 
 /// Run a benchmark file. Returns the process exit code: 0 every run was made (a diverging

@@ -110,6 +110,7 @@ BenchRow make_row(const PlannedRun& run, const RunReport& report) {
   row.solver_calls = 2 * summary.total_iterations();  // each solver once per coupling iteration
   row.wall_time = summary.wall_time();
   row.coupler_time = summary.step_coupler_time();
+  row.solver_time = summary.solver_time();
   row.unconverged_steps = static_cast<int>(summary.unconverged_steps().size());
   if (row.unconverged_steps > 0)
     add_note(row, fmt::format("{} step{} accepted unconverged at the iteration limit",

@@ -27,6 +27,7 @@ struct BenchRow {
   long solver_calls = 0;
   double wall_time = kNaN;
   double coupler_time = kNaN;
+  double solver_time = kNaN;  ///< both solvers together, the whole run
   double displacement_error = kNaN;
   double pressure_error = kNaN;
   std::string note;

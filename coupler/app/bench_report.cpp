@@ -36,6 +36,7 @@ nlohmann::json to_json(const BenchRow& r) {
           {"solver_calls", r.solver_calls},
           {"wall_time", number_or_null(r.wall_time)},
           {"coupler_time", number_or_null(r.coupler_time)},
+          {"solver_time", number_or_null(r.solver_time)},
           {"displacement_error", number_or_null(r.displacement_error)},
           {"pressure_error", number_or_null(r.pressure_error)},
           {"note", r.note},
@@ -61,7 +62,8 @@ const std::vector<std::string> kColumns = {"name",
                                            "case",
                                            "outcome",
                                            "reason",
-                                           "unconverged_steps"};
+                                           "unconverged_steps",
+                                           "solver_time"};
 
 std::string csv_field(const nlohmann::json& value) {
   if (value.is_null()) return "";

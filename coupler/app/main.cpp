@@ -66,6 +66,9 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   bool no_plot = false;
   bench->add_flag("--no-plot", no_plot, "do not draw bench.png");
+  bool bench_quiet = false;
+  bench->add_flag("-q,--quiet", bench_quiet,
+                  "one line per run instead of each run's header and summary");
 
   std::string results_file;
   std::string vtk_directory;
@@ -96,6 +99,7 @@ int main(int argc, char** argv) {
   if (*export_vtk) return cocopp::export_vtk(results_file, vtk_directory);
   if (*bench) {
     bench_options.plot = !no_plot;
+    bench_options.quiet = bench_quiet;
     return cocopp::run_bench(bench_file, bench_options);
   }
   cocopp::print_components();

@@ -76,6 +76,8 @@ RunDescription describe_run(const Case& c) {
   d.timestep_start = c.run.timestep_start;
   d.number_of_timesteps = c.run.number_of_timesteps;
   d.restarted = c.restart.has_value();
+  d.convergence_criterion = c.coupled_solver->criterion().describe();
+  d.tolerances = c.coupled_solver->criterion().tolerances();
   return d;
 }
 
@@ -117,6 +119,7 @@ class Run {
   explicit Run(Case& c) : case_(c), summary_(describe_run(c)) {}
 
   RunOutcome execute(const RunOptions& options) {
+    silent_ = options.silent;
     RunOutcome outcome;
     try {
       march(options);
@@ -149,8 +152,9 @@ class Run {
   void march(const RunOptions& options) {
     CoupledSolver& coupled = *case_.coupled_solver;
     coupled.initialize(*case_.solvers[0], *case_.solvers[1]);
-    fmt::print("  started        : {}, {}\n", case_.solvers[0]->started(),
-               case_.solvers[1]->started());
+    if (!silent_)
+      fmt::print("  started        : {}, {}\n", case_.solvers[0]->started(),
+                 case_.solvers[1]->started());
     const int continue_after = case_.restart ? case_.restart->step : -1;
     if (!case_.watchpoints.empty()) {
       case_.watchpoints.attach(coupled.x(), coupled.y());
@@ -186,7 +190,7 @@ class Run {
       summary_.add_step(record);
       iterations_ += record.iterations;
       algorithm_time_ += record.coupler_time;
-      if (!options.quiet) {
+      if (!options.quiet && !silent_) {
         const std::chrono::duration<double> elapsed =
             std::chrono::steady_clock::now() - march_start;
         print_progress(record, last, elapsed.count() / (step - first + 1) * (last - step));
@@ -239,7 +243,7 @@ class Run {
   /// The first few steps' warnings as they come; all of them go to the summary.
   void print_warnings(const StepRecord& record) {
     constexpr int kPrintedSteps = 5;
-    if (record.warnings.empty() || ++steps_with_warnings_ > kPrintedSteps + 1) return;
+    if (silent_ || record.warnings.empty() || ++steps_with_warnings_ > kPrintedSteps + 1) return;
     if (steps_with_warnings_ > kPrintedSteps) {
       fmt::print("warning: more steps with warnings follow: see \"warnings\" in {}\n",
                  results_path(".summary.json").string());
@@ -312,6 +316,7 @@ class Run {
     }
 
     const int steps = writer_ ? writer_->steps_written() : 0;
+    if (silent_) return;  // the caller reports the outcome
     fmt::print("\n{} after {} time step{} in {:.3f} s{}\n", to_string(outcome.status), steps,
                steps == 1 ? "" : "s", wall, outcome.reason.empty() ? "" : ": " + outcome.reason);
     auto line = [](const std::string& label, const std::string& text) {
@@ -342,6 +347,7 @@ class Run {
   std::unique_ptr<VtkSeries> vtk_;
   std::unique_ptr<WatchpointCsv> watchpoint_csv_;
   Clock::time_point start_ = Clock::now();
+  bool silent_ = false;
   long iterations_ = 0;
   double algorithm_time_ = 0.0;
   bool state_saved_ = false;
@@ -393,7 +399,7 @@ RunReport run_case(const std::filesystem::path& case_file, const RunOptions& opt
   } catch (const std::exception& e) {
     return not_started(RunStatus::kFailed, "the case cannot be run now", e);
   }
-  print_header(c);
+  if (!options.silent) print_header(c);
   std::signal(SIGINT, on_interrupt);
   std::signal(SIGTERM, on_interrupt);
   std::signal(SIGHUP, on_interrupt);

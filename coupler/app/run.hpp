@@ -9,7 +9,10 @@
 namespace cocopp {
 
 struct RunOptions {
-  bool quiet = false;    ///< no progress lines (header and summary are still printed)
+  bool quiet = false;  ///< no progress lines (header and summary are still printed)
+  /// Nothing printed: the caller reports the outcome (cocopp bench --quiet). Errors before the
+  /// run starts (an invalid case) are still printed.
+  bool silent = false;
   bool verbose = false;  ///< also one line per coupling iteration
   bool restart = false;  ///< continue from the saved state (load_case's `restart`)
 };

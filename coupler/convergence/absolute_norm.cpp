@@ -8,7 +8,7 @@ namespace {
 
 class AbsoluteNorm : public NormCriterion {
  public:
-  using NormCriterion::NormCriterion;
+  explicit AbsoluteNorm(const Settings& s) : NormCriterion(s, false) {}
   void initialize_step() override { last_ = -1.0; }
   void update(const Eigen::VectorXd& r) override { last_ = norm(r); }
   bool is_satisfied() const override { return last_ >= 0.0 && last_ < tolerance_; }

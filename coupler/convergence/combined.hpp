@@ -37,6 +37,12 @@ class Combined : public ConvergenceCriterion {
       if (auto part = c->progress(); !part.empty()) parts.push_back(std::move(part));
     return join(parts, ", ");
   }
+  std::vector<Tolerance> tolerances() const override {
+    std::vector<Tolerance> all;
+    for (const auto& c : criteria_)
+      for (const auto& t : c->tolerances()) all.push_back(t);
+    return all;
+  }
   std::string describe() const override {
     std::vector<std::string> parts;
     for (const auto& c : criteria_) parts.push_back(c->describe());

@@ -2,10 +2,20 @@
 // Convergence criteria decide when the coupling iterations of a time step stop.
 #include <Eigen/Core>
 #include <string>
+#include <vector>
 
 #include "core/case/registry.hpp"
 
 namespace cocopp {
+
+/// A tolerance a criterion compares the residual with: of the residual's `order`-norm ("1",
+/// "2", "inf"), relative to the step's first iteration or absolute. For plots of the residual
+/// history against it (the results file keeps them).
+struct Tolerance {
+  bool relative = false;
+  std::string order = "2";
+  double value = 0.0;
+};
 
 class ConvergenceCriterion {
  public:
@@ -25,6 +35,8 @@ class ConvergenceCriterion {
   virtual std::string progress() const { return ""; }
   /// One line for the run header, e.g. "relative_norm(2) < 1e-06".
   virtual std::string describe() const = 0;
+  /// The tolerances it compares the residual with (none for an iteration limit).
+  virtual std::vector<Tolerance> tolerances() const { return {}; }
 };
 
 using ConvergenceCriterionRegistry = Registry<ConvergenceCriterion>;

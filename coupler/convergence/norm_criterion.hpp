@@ -10,9 +10,11 @@ namespace cocopp {
 
 class NormCriterion : public ConvergenceCriterion {
  public:
-  explicit NormCriterion(const Settings& s)
+  NormCriterion(const Settings& s, bool relative)
       : tolerance_(s.required_in_range("tolerance", Range::non_negative())),
-        order_(s.get_choice("order", "2", {"1", "2", "inf"})) {}
+        order_(s.get_choice("order", "2", {"1", "2", "inf"})),
+        relative_(relative) {}
+  std::vector<Tolerance> tolerances() const override { return {{relative_, order_, tolerance_}}; }
 
  protected:
   double norm(const Eigen::VectorXd& r) const {
@@ -22,6 +24,7 @@ class NormCriterion : public ConvergenceCriterion {
   }
   double tolerance_;
   std::string order_;
+  bool relative_;
 };
 
 }  // namespace cocopp

@@ -10,7 +10,7 @@ namespace {
 
 class RelativeNorm : public NormCriterion {
  public:
-  using NormCriterion::NormCriterion;
+  explicit RelativeNorm(const Settings& s) : NormCriterion(s, true) {}
   void initialize_step() override { first_ = last_ = -1.0; }
   void update(const Eigen::VectorXd& r) override {
     last_ = norm(r);

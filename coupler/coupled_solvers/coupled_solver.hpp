@@ -87,6 +87,8 @@ class CoupledSolver {
   const Interface& y() const { return y_; }
   /// "iqni (omega 0.05, model ls q 10), predictor linear, until (...)": for the run header.
   std::string describe() const;
+  /// When a step's iterations stop.
+  const ConvergenceCriterion& criterion() const { return *criterion_; }
   /// The memory a restarted run needs to continue as this one would (predictor history and
   /// the type's own: secant columns, Aitken's factor, scaling weights), between time steps.
   void save_state(State& state) const;

@@ -293,6 +293,19 @@ void ResultsWriter::write_run_attributes(const RunDescription& run) {
   set_double(root, "delta_t", run.delta_t);
   set_int(root, "timestep_start", run.timestep_start);
   set_int(root, "number_of_timesteps", run.number_of_timesteps);
+  // The criterion, so that plots can draw the residuals as it measures them, with its tolerance.
+  set_string(root, "convergence_criterion", run.convergence_criterion);
+  std::vector<std::string> measures, orders;
+  std::vector<double> tolerances;
+  for (const auto& t : run.tolerances) {
+    measures.push_back(t.relative ? "relative" : "absolute");
+    orders.push_back(t.order);
+    tolerances.push_back(t.value);
+  }
+  set_strings(root, "tolerance_measure", measures);
+  set_strings(root, "tolerance_order", orders);
+  set_attribute(root, "tolerance", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {tolerances.size()},
+                tolerances.data());
   set_string(root, "created", iso_time_now());
   set_string(root, "status", "running");
   set_string(root, "message", "");

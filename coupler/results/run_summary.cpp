@@ -97,6 +97,10 @@ void RunSummary::finish(const RunOutcome& outcome, double total_wall_time,
   coupler_time_ = total_coupler_time;
 }
 
+double RunSummary::solver_time() const {
+  return std::accumulate(solver_times_.begin(), solver_times_.end(), 0.0);
+}
+
 json RunSummary::solver_times_json() const {
   // Keyed by solver name; a repeated name gets a suffix ("tube", "tube_2") rather than
   // silently replacing the first solver's time.

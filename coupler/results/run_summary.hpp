@@ -35,6 +35,8 @@ class RunSummary {
   /// NaN before the first step.
   double average_iterations() const;
   double wall_time() const { return wall_time_; }
+  /// The time spent in the solvers, summed over them (before finish(): inside the steps).
+  double solver_time() const;
   /// The coupling algorithm's own time inside the steps (no start-up, no results I/O).
   double step_coupler_time() const { return iteration_coupler_time_; }
 

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "coupler/convergence/convergence_criterion.hpp"
+
 namespace cocopp {
 
 /// What is known at the start of a run.
@@ -15,7 +17,9 @@ struct RunDescription {
   double delta_t = 0;                     ///< s
   int timestep_start = 0;
   int number_of_timesteps = 0;
-  bool restarted = false;  ///< continues a saved state (timestep_start is its step)
+  bool restarted = false;             ///< continues a saved state (timestep_start is its step)
+  std::string convergence_criterion;  ///< ConvergenceCriterion::describe()
+  std::vector<Tolerance> tolerances;  ///< what the criterion compares the residual with
 };
 
 /// One converged (or accepted) time step.
