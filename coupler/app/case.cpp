@@ -123,6 +123,14 @@ Case load_case(const std::filesystem::path& file, bool restart) {
       settings.has("results_name") ? settings.get_name("results_name", "") : file.stem().string();
   c.state_interval = settings.get_int_in_range("state_interval", 0, 0);
   c.vtk_output = settings.get<bool>("vtk_output", false);
+  for (const double step : settings.get<std::vector<double>>("vtk_iterations", {})) {
+    if (step < 1 || step != std::floor(step) || step > 1e9)
+      settings.fail("vtk_iterations",
+                    fmt::format("{:g} is not a time step number: list the steps (1, 2, ...) whose "
+                                "coupling iterations to write",
+                                step));
+    c.vtk_iterations.push_back(static_cast<int>(step));
+  }
   c.watchpoints = Watchpoints(settings);
   prepare_restart(c, restart, settings);
 

@@ -23,6 +23,7 @@ struct Case {
   std::string results_where;  ///< "case.yaml:4:3: 'settings.results_directory'" for messages
   std::string results_name;   ///< file stem of the HDF5 file and the JSON summary
   bool vtk_output = false;    ///< also write the interface for ParaView every step (VtkSeries)
+  std::vector<int> vtk_iterations;  ///< steps whose every coupling iteration is written too
   Watchpoints watchpoints;    ///< settings.watchpoints: variables at points, every step
   int state_interval = 0;     ///< also save the coupled-solver state every this many steps
   /// The solvers' working directories named in the case (the run locks them).

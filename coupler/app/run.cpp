@@ -174,7 +174,12 @@ class Run {
     if (case_.vtk_output)
       vtk_ = std::make_unique<VtkSeries>(case_.results_directory, case_.results_name,
                                          case_.restart ? case_.restart->step : -1);
-    if (options.verbose) coupled.set_iteration_observer(print_iteration);
+    const bool verbose = options.verbose;
+    if (verbose || !case_.vtk_iterations.empty())
+      coupled.set_iteration_observer([this, verbose](const IterationReport& report) {
+        if (verbose) print_iteration(report);
+        write_iteration_vtk(report);
+      });
     const int first = case_.run.timestep_start + 1;
     const int last = case_.run.timestep_start + case_.run.number_of_timesteps;
     const auto march_start = std::chrono::steady_clock::now();
@@ -202,6 +207,23 @@ class Run {
     }
     save_state(last);
     current_step_ = 0;
+  }
+
+  /// settings.vtk_iterations: the iteration's x, y and residual r = x~ - x of a chosen step, as
+  /// <name>_step<step>_iterations.pvd with the iteration number as its time.
+  void write_iteration_vtk(const IterationReport& report) {
+    const auto& chosen = case_.vtk_iterations;
+    if (std::find(chosen.begin(), chosen.end(), report.step) == chosen.end()) return;
+    const CoupledSolver& coupled = *case_.coupled_solver;
+    if (report.iteration == 1 || !iteration_vtk_)
+      iteration_vtk_ = std::make_unique<VtkSeries>(
+          case_.results_directory,
+          fmt::format("{}_step{:06d}_iterations", case_.results_name, report.step));
+    std::vector<VtkPart> parts = vtk_parts(coupled.x(), coupled.y());
+    Interface residual = coupled.x();
+    residual.set_data(*report.residual_vector);
+    add_vtk_fields(parts, residual, "residual_");
+    iteration_vtk_->write_step(report.iteration, report.iteration, parts);
   }
 
   /// Every step computed: completed, or stalled if some were accepted at the iteration limit.
@@ -345,6 +367,7 @@ class Run {
   RunSummary summary_;
   std::unique_ptr<ResultsWriter> writer_;
   std::unique_ptr<VtkSeries> vtk_;
+  std::unique_ptr<VtkSeries> iteration_vtk_;  ///< the chosen step being computed
   std::unique_ptr<WatchpointCsv> watchpoint_csv_;
   Clock::time_point start_ = Clock::now();
   bool silent_ = false;

@@ -153,7 +153,7 @@ StepRecord CoupledSolver::iterate_step(int step, double time) {
     record.criterion_progress = criterion_->progress();
     if (iteration_observer_)
       iteration_observer_({step, iteration, record.residual_norms.back(), record.criterion_progress,
-                           seconds_since(step_start_)});
+                           seconds_since(step_start_), &r});
     if (criterion_->is_satisfied()) {
       on_converged(x, xt, r);
       tolerance_met = criterion_->tolerance_met();

@@ -42,6 +42,9 @@ struct IterationReport {
   double residual;        ///< 2-norm of r = x~ - x
   std::string criterion;  ///< the residual as the criterion measures it (may be empty)
   double step_seconds;    ///< wall time since the step started
+  /// r itself, in x's layout; valid during the call only. x() is the iteration's input and
+  /// y() the loads it gave.
+  const Eigen::VectorXd* residual_vector = nullptr;
 };
 
 class CoupledSolver {

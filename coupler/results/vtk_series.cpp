@@ -112,21 +112,26 @@ std::string vtu(const VtkPart& part) {
 
 }  // namespace
 
+void add_vtk_fields(std::vector<VtkPart>& parts, const Interface& values,
+                    const std::string& prefix) {
+  for (const auto& part : values.parts()) {
+    const ModelPart& model_part = *part.model_part;
+    auto same = std::find_if(parts.begin(), parts.end(), [&](const VtkPart& p) {
+      return p.name == model_part.name && p.ids == model_part.ids;
+    });
+    if (same == parts.end()) {
+      parts.push_back({model_part.name, model_part.ids, model_part.coordinates, {}});
+      same = parts.end() - 1;
+    }
+    for (const auto& variable : part.variables)
+      same->fields.emplace_back(prefix + variable, values.values(model_part.name, variable));
+  }
+}
+
 std::vector<VtkPart> vtk_parts(const Interface& x, const Interface& y) {
   std::vector<VtkPart> parts;
-  for (const Interface* interface : {&x, &y})
-    for (const auto& part : interface->parts()) {
-      const ModelPart& model_part = *part.model_part;
-      auto same = std::find_if(parts.begin(), parts.end(), [&](const VtkPart& p) {
-        return p.name == model_part.name && p.ids == model_part.ids;
-      });
-      if (same == parts.end()) {
-        parts.push_back({model_part.name, model_part.ids, model_part.coordinates, {}});
-        same = parts.end() - 1;
-      }
-      for (const auto& variable : part.variables)
-        same->fields.emplace_back(variable, interface->values(model_part.name, variable));
-    }
+  add_vtk_fields(parts, x, "");
+  add_vtk_fields(parts, y, "");
   return parts;
 }
 

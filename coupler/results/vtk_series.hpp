@@ -32,6 +32,11 @@ struct VtkPart {
 /// variables first): what the coupler writes for a step.
 std::vector<VtkPart> vtk_parts(const Interface& x, const Interface& y);
 
+/// Adds the variables of `values` to the parts of the same name, as fields `prefix<variable>`
+/// (the residual of an iteration: "residual_displacement").
+void add_vtk_fields(std::vector<VtkPart>& parts, const Interface& values,
+                    const std::string& prefix);
+
 class VtkSeries {
  public:
   /// A new series, or, with `continue_after_step` >= 0, the series of an earlier run continued:

@@ -408,8 +408,8 @@ Eigen::VectorXd TubeFlow::pressure() const {
   return p;
 }
 
-void TubeFlow::output_step(int step) const {
-  write_output(parameters_.output, "tube_flow", step, parameters_.geometry, displacement_,
+void TubeFlow::output_step(int step, double time) const {
+  write_output(parameters_.output, "tube_flow", step, time, parameters_.geometry, displacement_,
                {{"pressure", pressure(), false}, {"velocity", velocity(), false}});
 }
 

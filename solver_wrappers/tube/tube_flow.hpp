@@ -69,7 +69,8 @@ class TubeFlow {
   Eigen::VectorXd solve(const Eigen::VectorXd& displacement);
   void finalize_step();
   /// Write the ParaView file of `step` if the output interval says so.
-  void output_step(int step) const;
+  /// The ParaView file of `step` at `time` (s), if the output interval says so.
+  void output_step(int step, double time) const;
   /// What a restart after this step needs, and back (`file` names the source in errors).
   RestartData restart_data() const;
   void restore(const RestartData& data, const std::filesystem::path& file);

@@ -20,7 +20,7 @@ Eigen::VectorXd radial_vectors(const Eigen::VectorXd& displacement) {
   return vectors;
 }
 
-void write_output(const OutputSettings& output, const std::string& solver, int step,
+void write_output(const OutputSettings& output, const std::string& solver, int step, double time,
                   const TubeGeometry& geometry, const Eigen::VectorXd& displacement,
                   const std::vector<PointField>& fields) {
   if (!output.due(step)) return;
@@ -34,6 +34,8 @@ void write_output(const OutputSettings& output, const std::string& solver, int s
   const Eigen::VectorXd z = geometry.cell_centres();
   file << "# vtk DataFile Version 3.0\n"
        << solver << " step " << step << "\nASCII\nDATASET POLYDATA\n"
+       << "FIELD FieldData 1\nTIME 1 1 double\n"
+       << time << "\n"
        << "POINTS " << m << " double\n";
   for (int i = 0; i < m; ++i) {
     file << 0.0 << ' ' << geometry.radius() + displacement[i] << ' ' << z[i] << '\n';

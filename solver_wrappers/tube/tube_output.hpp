@@ -20,8 +20,9 @@ struct PointField {
 /// "<directory>/<solver>_<step padded to 6 digits>.vtk"
 std::string output_file_name(const OutputSettings& output, const std::string& solver, int step);
 
-/// Write the file for `step` if the output interval says so (creates the directory).
-void write_output(const OutputSettings& output, const std::string& solver, int step,
+/// Write the file for `step` if the output interval says so (creates the directory), with its
+/// `time` as field data TIME, which ParaView takes as the time of a file series.
+void write_output(const OutputSettings& output, const std::string& solver, int step, double time,
                   const TubeGeometry& geometry, const Eigen::VectorXd& displacement,
                   const std::vector<PointField>& fields);
 

@@ -84,9 +84,9 @@ void TubeRingmodel::restore(const RestartData& data, const std::filesystem::path
   displacement_ = restart_array(data, "displacement", cells(), file);
 }
 
-void TubeRingmodel::output_step(int step) const {
+void TubeRingmodel::output_step(int step, double time) const {
   write_output(
-      parameters_.output, "tube_ringmodel", step, parameters_.geometry, displacement_,
+      parameters_.output, "tube_ringmodel", step, time, parameters_.geometry, displacement_,
       {{"displacement", radial_vectors(displacement_), true}, {"pressure", pressure_, false}});
 }
 

@@ -35,7 +35,8 @@ class TubeRingmodel {
   /// ...") where p / rho_f >= 2 c0^2 + p_ref / rho_f (the tube law has no finite area there).
   Eigen::VectorXd solve(const Eigen::VectorXd& pressure);
   void finalize_step() {}
-  void output_step(int step) const;
+  /// The ParaView file of `step` at `time` (s), if the output interval says so.
+  void output_step(int step, double time) const;
   /// What a restart after this step needs, and back (`file` names the source in errors).
   RestartData restart_data() const;
   void restore(const RestartData& data, const std::filesystem::path& file);

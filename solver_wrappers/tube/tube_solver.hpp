@@ -63,12 +63,13 @@ class TubeSolver : public sdk::Solver {
 
   sdk::InterfaceDescription initialize(const sdk::RunInfo& run) override {
     model_ = make_(run);
+    delta_t_ = run.delta_t;
     if (run.timestep_start > 0) {
       const auto file = restart_file_name(name_, run.timestep_start);
       model_->restore(read_restart_file(file, name_, run.timestep_start),
                       std::filesystem::absolute(file));
     } else {
-      model_->output_step(model_->step());
+      output();
     }
     sdk::InterfaceDescription description;
     description.model_parts.push_back(
@@ -90,7 +91,7 @@ class TubeSolver : public sdk::Solver {
   }
 
   void finalize_step() override { model_->finalize_step(); }
-  void output_step() override { model_->output_step(model_->step()); }
+  void output_step() override { output(); }
 
   bool can_restart() const override { return true; }
   void save_restart(std::int32_t step) override {
@@ -102,9 +103,12 @@ class TubeSolver : public sdk::Solver {
   }
 
  private:
+  void output() const { model_->output_step(model_->step(), model_->step() * delta_t_); }
+
   std::string name_;
   Factory make_;
   std::unique_ptr<Model> model_;
+  double delta_t_ = 0.0;
 };
 
 /// main() of a tube solver executable: --help prints `usage`, else serve the coupler with the

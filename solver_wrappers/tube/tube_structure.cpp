@@ -166,9 +166,9 @@ Eigen::VectorXd TubeStructure::displacement() const {
   return (radius_.array() - r0_).matrix();
 }
 
-void TubeStructure::output_step(int step) const {
+void TubeStructure::output_step(int step, double time) const {
   const Eigen::VectorXd dr = displacement();
-  write_output(parameters_.output, "tube_structure", step, parameters_.geometry, dr,
+  write_output(parameters_.output, "tube_structure", step, time, parameters_.geometry, dr,
                {{"displacement", radial_vectors(dr), true}, {"pressure", pressure_, false}});
 }
 

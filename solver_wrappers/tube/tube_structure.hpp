@@ -41,7 +41,8 @@ class TubeStructure {
   Eigen::VectorXd solve(const Eigen::VectorXd& pressure);
   /// Commit the step: update the wall velocity and acceleration.
   void finalize_step();
-  void output_step(int step) const;
+  /// The ParaView file of `step` at `time` (s), if the output interval says so.
+  void output_step(int step, double time) const;
   /// What a restart after this step needs, and back (`file` names the source in errors).
   RestartData restart_data() const;
   void restore(const RestartData& data, const std::filesystem::path& file);

@@ -3,7 +3,10 @@
 time series that a real reader, VTK's own (python3-vtk9), reads back: every step's time in
 order, the points at the model part's initial coordinates, and each variable equal to the
 results file's values, exactly. `cocopp export-vtk` of the results file writes the same files;
-a restarted run continues the collection without repeating a step.
+a restarted run continues the collection without repeating a step. settings.vtk_iterations
+writes every coupling iteration of chosen steps, with the residual r = x~ - x as a field whose
+norm is the results file's residual norm of that iteration, and the converged iteration's
+input equal to the step's result.
 
     /usr/bin/python3 tests/integration/test_vtk_output.py BIN_DIR
 """
@@ -77,14 +80,47 @@ def main():
                         ignore=shutil.ignore_patterns("results"))
         case = case_dir / "case.yaml"
         original = case.read_text()
-        case.write_text(original.replace("number_of_timesteps: 100",
-                                          "number_of_timesteps: 10\n  vtk_output: true"))
+        case.write_text(original.replace(
+            "number_of_timesteps: 100",
+            "number_of_timesteps: 10\n  vtk_output: true\n  vtk_iterations: [1, 7]"))
         subprocess.run([cocopp, "run", "-q", str(case)], check=True, stdout=subprocess.DEVNULL)
         results = case_dir / "results"
         count = compare_with_results(results / "case.pvd", results / "case.h5")
         check(count == 10, f"{count} data sets")
         variables = read_vtu(collection(results / "case.pvd")[0][2])[2].keys()
         check({"displacement", "pressure", "traction"} <= set(variables), f"arrays {variables}")
+
+        # Every iteration of steps 1 and 7, with the residual as a field.
+        with h5py.File(results / "case.h5", "r") as f:
+            for step in (1, 7):
+                row = step - 1
+                offset, count = f["residuals/offset"][row], f["residuals/count"][row]
+                norms = f["residuals/norms"][offset:offset + count]
+                entries = collection(results / f"case_step{step:06d}_iterations.pvd")
+                check([t for t, _, _ in entries] == list(range(1, count + 1)),
+                      f"step {step}: one data set per iteration, {count}, timed 1, 2, ...")
+                for (iteration, _, file), norm in zip(entries, norms):
+                    residual = read_vtu(file)[2]["residual_displacement"]
+                    check(np.isclose(np.linalg.norm(residual), norm, rtol=1e-12, atol=0),
+                          f"step {step}, iteration {iteration:g}: |r| {np.linalg.norm(residual)}"
+                          f" against {norm}")
+                last = read_vtu(entries[-1][2])[2]
+                check(np.array_equal(last["displacement"].reshape(-1, 3),
+                                     f["x/wall/displacement"][row]),
+                      f"step {step}: the last iteration's input is the step's displacement")
+                check(np.array_equal(last["pressure"].reshape(-1), f["y/wall/pressure"][row, :, 0]),
+                      f"step {step}: the last iteration's pressure is the step's")
+
+        # The tube solvers' own ParaView files carry their time (legacy VTK, field data TIME).
+        for solver in ("flow", "structure"):
+            for step in (0, 10):
+                reader = vtk.vtkPolyDataReader()
+                reader.SetFileName(str(case_dir / solver / "output" /
+                                       f"tube_{solver}_{step:06d}.vtk"))
+                reader.Update()
+                time = reader.GetOutput().GetFieldData().GetArray("TIME")
+                check(time is not None and time.GetValue(0) == step * 1e-4,
+                      f"tube_{solver}_{step:06d}.vtk: TIME {time and time.GetValue(0)}")
 
         # export-vtk writes the same files from the results file.
         exported = pathlib.Path(tmp) / "exported"

@@ -213,7 +213,7 @@ TEST(TubeFlow, WritesParaViewFilesAtTheOutputInterval) {
     flow.initialize_step();
     flow.solve(Eigen::VectorXd::Constant(5, 1e-6));
     flow.finalize_step();
-    flow.output_step(step);
+    flow.output_step(step, step * 1e-4);
   }
   EXPECT_FALSE(std::filesystem::exists(directory / "tube_flow_000001.vtk"));
   EXPECT_TRUE(std::filesystem::exists(directory / "tube_flow_000002.vtk"));
@@ -221,6 +221,10 @@ TEST(TubeFlow, WritesParaViewFilesAtTheOutputInterval) {
   std::stringstream text;
   text << file.rdbuf();
   EXPECT_NE(text.str().find("DATASET POLYDATA"), std::string::npos);
+  // The time, for ParaView's file series: TIME field data.
+  EXPECT_NE(text.str().find("FIELD FieldData 1\nTIME 1 1 double\n0.00040000000000000002\n"),
+            std::string::npos)
+      << text.str();
   EXPECT_NE(text.str().find("POINTS 5 double"), std::string::npos);
   EXPECT_NE(text.str().find("SCALARS pressure double 1"), std::string::npos);
   EXPECT_NE(text.str().find("SCALARS velocity double 1"), std::string::npos);
