@@ -9,7 +9,7 @@ An error of exactly 0 (a run identical to the reference) is drawn on the bottom 
 label "(= reference)"; runs without an error are listed under the plot. The figure is made by
 the module cocopp_plot (next to this script, or installed).
 
-    /usr/bin/python3 scripts/plot_bench.py bench_results/bench.json -o bench_results/bench.png
+    /usr/bin/python3 scripts/plot_bench.py results/bench/bench.json -o results/bench/bench.png
 """
 import argparse
 import os

@@ -17,7 +17,7 @@ case with rho_s/rho_f, E, dt, l, |lambda_1|, the number of unstable modes, and f
 its average coupling iterations per step or how it ended. With -o it draws the average iterations
 per step against the number of unstable modes, one line per variant.
 
-    /usr/bin/python3 scripts/tube_modes.py examples/tube/stability/stability_results -o stability.png
+    /usr/bin/python3 scripts/tube_modes.py examples/tube/stability/results/stability -o stability.png
 """
 import argparse
 import json

@@ -97,7 +97,7 @@ BenchFile read_bench_file(const fs::path& file) {
   b.base_case = dir / root.required<std::string>("base_case");
   if (!fs::is_regular_file(b.base_case))
     root.fail("base_case", "no such file: " + b.base_case.string());
-  b.output_directory = dir / root.get<std::string>("output_directory", "bench_results");
+  b.output_directory = dir / root.get<std::string>("output_directory", "results/bench");
   read_reference(root, b);
   b.changes = read_changes(root);
   std::set<std::string> names;

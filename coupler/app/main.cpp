@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
       "benchmark file, and a tightly converged reference (or take a given results file), then "
       "print and write (bench.csv, bench.json, bench.png) iterations, run time and the error "
       "against the reference. Benchmark file (YAML/JSON): base_case: <case file>; "
-      "output_directory: <dir> (default bench_results); reference: {results: <file.h5>} or "
+      "output_directory: <dir> (default results/bench); reference: {results: <file.h5>} or "
       "{tolerance: 1e-10}; settings: {...} (merged into every run); variants: [{name: ..., "
       "coupled_solver: {...}, settings: {...}}, ...]. See docs/bench.md. Exit code 0: all runs "
       "made (diverging variants included); 1: stopped; 2: invalid file.");

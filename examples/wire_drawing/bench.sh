@@ -5,6 +5,8 @@
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
+source "$root/scripts/lib/cocopp-bin.sh"
+cocopp=$(cocopp_executable "$root")
 case_dir="$here/results/bench_case"
 rm -rf "$case_dir" "$here/results/bench"
 /usr/bin/python3 "$here/make_case.py" --output "$case_dir" "$@"
@@ -14,4 +16,4 @@ for film in "$case_dir/fluid" "$case_dir/surrogate/fluid"; do  # the surrogate's
   (cd "$film" && blockMesh > log.blockMesh 2>&1) ||
     { echo "bench.sh: blockMesh failed, see $film/log.blockMesh" >&2; exit 1; }
 done
-exec "$root/build/bin/cocopp" bench "$here/bench.yaml"
+exec "$cocopp" bench "$here/bench.yaml"

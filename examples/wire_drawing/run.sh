@@ -10,6 +10,8 @@
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
+source "$root/scripts/lib/cocopp-bin.sh"
+cocopp=$(cocopp_executable "$root")
 name=case
 steps=
 args=()
@@ -35,4 +37,4 @@ done
 if [ -n "$steps" ]; then
   sed -i "s/^  number_of_timesteps: .*/  number_of_timesteps: $steps/" "$case_dir/case.yaml"
 fi
-exec "$root/build/bin/cocopp" run "$case_dir/case.yaml"
+exec "$cocopp" run "$case_dir/case.yaml"

@@ -51,7 +51,7 @@ TEST(CocoppBench, ComparesVariantsWithComputedReference) {
   const auto result = run_cocopp("bench " + (dir / "bench.yaml").string());
   ASSERT_EQ(result.exit_code, 0) << result.output;
 
-  const fs::path out = dir / "bench_results";
+  const fs::path out = dir / "results" / "bench";
   for (const char* name : {"reference", "same_as_reference", "iqni_ls_q10", "gauss_seidel"}) {
     EXPECT_NE(result.output.find(std::string("\n") + name + " "), std::string::npos) << name;
     EXPECT_TRUE(fs::exists(out / name / "results" / "case.h5")) << name;
@@ -135,7 +135,7 @@ variants:
   result = run_cocopp("bench " + (dir / "bench.yaml").string());
   EXPECT_EQ(result.exit_code, 2) << result.output;
   EXPECT_NE(result.output.find("coupled_solver.model.q"), std::string::npos) << result.output;
-  EXPECT_FALSE(fs::exists(dir / "bench_results" / "reference" / "results"));
+  EXPECT_FALSE(fs::exists(dir / "results" / "bench" / "reference" / "results"));
   fs::remove_all(dir);
 }
 
@@ -171,7 +171,7 @@ TEST(CocoppBench, SweepsCasesWithSolverInputsWithoutReference) {
   const fs::path dir = bench_directory("bench_sweep", kSweep);
   const auto result = run_cocopp("bench " + (dir / "bench.yaml").string());
   ASSERT_EQ(result.exit_code, 0) << result.output;
-  const fs::path out = dir / "bench_results";
+  const fs::path out = dir / "results" / "bench";
 
   // The new values are in the copied input files, the base case's files are untouched.
   const std::string light =
@@ -278,7 +278,7 @@ TEST(CocoppBench, SolverInputErrorsNameTheBenchFileAndTheKey) {
 )");
   result = run_cocopp("bench " + (dir / "bench.yaml").string());
   EXPECT_EQ(result.exit_code, 0) << result.output;
-  const nlohmann::json bench = read_json(dir / "bench_results" / "bench.json");
+  const nlohmann::json bench = read_json(dir / "results" / "bench" / "bench.json");
   const auto& bad = run_named(bench, "bad_key");
   EXPECT_EQ(bad["outcome"], "solver_failed");
   const std::string message = bad["message"];

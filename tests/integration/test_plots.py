@@ -140,7 +140,7 @@ def main():
         # cocopp bench --quiet, and its figure against three costs.
         tube = os.path.join(scratch, "tube")
         shutil.copytree(os.path.join(source, "examples/tube"), tube,
-                        ignore=shutil.ignore_patterns("results", "bench_results", "output",
+                        ignore=shutil.ignore_patterns("results", "output",
                                                       "*.log"))
         quiet = run([os.path.join(bin_dir, "cocopp"), "bench", "--quiet", "bench.yaml"],
                     cwd=os.path.join(tube, "bench"))
@@ -148,7 +148,7 @@ def main():
         check(len(run_lines) == 7 and "cocopp 0.1.0: case" not in quiet
               and "diverged after 0 steps" in run_lines[-1],
               "bench --quiet: one line per run, no run headers")
-        report = bench.load(os.path.join(tube, "bench", "bench_results", "bench.json"))
+        report = bench.load(os.path.join(tube, "bench", "results", "bench", "bench.json"))
         check(all(r["solver_time"] > 0 for r in report["runs"] if r["steps_completed"] > 0),
               "bench.json has each run's solver time")
         figure = bench.plot_bench(report, os.path.join(scratch, "bench.png"))

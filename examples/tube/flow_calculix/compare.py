@@ -9,7 +9,7 @@ thin-ring tube structure with backward Euler). The runs must be done first:
   build/bin/cocopp run examples/tube/flow_calculix/case.yaml
   build/bin/cocopp run examples/tube/flow_calculix/equivalent_tube/case.yaml
   build/bin/cocopp run examples/tube/flow_structure/case.yaml
-  /usr/bin/python3 examples/tube/flow_calculix/compare.py [-o docs/tube-flow-calculix.png]
+  /usr/bin/python3 examples/tube/flow_calculix/compare.py [-o results/tube-flow-calculix.png]
 
 If case_axisymmetric.yaml (the same wall as CAX8 elements) has run too, its difference from the
 sector is printed.
@@ -42,7 +42,8 @@ def load(path):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("-o", "--output", default=os.path.join(HERE, "comparison.png"))
+    parser.add_argument("-o", "--output",
+                        default=os.path.join(HERE, "results", "tube-flow-calculix.png"))
     arguments = parser.parse_args()
     data = [(label, style) + load(path) for label, style, path in RUNS]
     steps = min(len(time) for _, _, time, _, _ in data)
@@ -67,6 +68,7 @@ def main():
     profile.legend(fontsize=6)
     profile.set_title("along the tube (solid: CalculiX, dashed: equivalent, dotted: thin ring)")
     figure.tight_layout()
+    os.makedirs(os.path.dirname(os.path.abspath(arguments.output)), exist_ok=True)
     figure.savefig(arguments.output, dpi=110)
     calculix = data[0][4][:steps]
     print("wrote %s over %d steps; peak displacement of the CalculiX sector %.3g m"

@@ -4,7 +4,7 @@
 the pressure reaches half of its peak) with a similar peak. Exit code 1 if the arrival times
 differ by more than 10 %.
 
-    /usr/bin/python3 compare.py results/case.h5 ../flow_structure/results/case.h5 [--plot out.png]
+    /usr/bin/python3 compare.py results/case.h5 results/flow_structure_1d/results/case.h5 [--plot out.png]
 """
 import argparse
 import sys

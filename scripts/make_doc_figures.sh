@@ -1,0 +1,98 @@
+#!/usr/bin/env bash
+# The figures in docs/images, remade from the runs behind them: each figure's commands write
+# under their example's results/ (as any documented command does), and only this script copies
+# the result into docs/images. Run from anywhere in a built checkout (scripts/setup.sh).
+#
+#   scripts/make_doc_figures.sh --list             # the figures, what each needs and how long
+#   scripts/make_doc_figures.sh stability          # one or more figures by name
+#   scripts/make_doc_figures.sh all                # every figure (about 45 minutes)
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+source "$root/scripts/lib/cocopp-bin.sh"
+images="$root/docs/images"
+python=/usr/bin/python3
+coarse_wire=(--set mesh.wire_radial_elements=4 --set mesh.wire_axial_elements=153
+             --set mesh.film_axial_cells=50 --set mesh.film_radial_cells=3)
+
+# name | needs | time on 2 cores | docs page
+figures=(
+  "stability|the tube solvers|2 min|docs/stability.md"
+  "tube_flow_calculix|CalculiX|2 min|docs/solver-wrappers-calculix.md"
+  "openfoam_wedge|OpenFOAM|1 min|docs/solver-wrappers-openfoam.md"
+  "wire_drawing_bench|OpenFOAM and CalculiX|8 min|docs/wire-drawing.md"
+  "wire_drawing|OpenFOAM and CalculiX|35 min|docs/wire-drawing.md"
+)
+
+publish() {  # publish <file under results/> <name in docs/images>
+  cp "$1" "$images/$2"
+  echo "make_doc_figures: docs/images/$2 from ${1#"$root"/}"
+}
+
+make_stability() {
+  local example="$root/examples/tube/stability"
+  "$cocopp" bench --quiet "$example/stability.yaml"
+  "$python" "$root/scripts/tube_modes.py" "$example/results/stability" \
+    -o "$example/results/stability/stability.png"
+  publish "$example/results/stability/stability.png" stability.png
+}
+
+make_tube_flow_calculix() {
+  local tube="$root/examples/tube"
+  "$cocopp" run --quiet "$tube/flow_calculix/case.yaml"
+  "$cocopp" run --quiet "$tube/flow_calculix/case_axisymmetric.yaml"
+  "$cocopp" run --quiet "$tube/flow_calculix/equivalent_tube/case.yaml"
+  "$cocopp" run --quiet "$tube/flow_structure/case.yaml"
+  "$python" "$tube/flow_calculix/compare.py"
+  publish "$tube/flow_calculix/results/tube-flow-calculix.png" tube-flow-calculix.png
+}
+
+make_openfoam_wedge() {
+  "$root/examples/tube/openfoam_wedge/run.sh"
+  publish "$root/examples/tube/openfoam_wedge/results/openfoam_wedge_vs_1d.png" \
+    openfoam_wedge_vs_1d.png
+}
+
+make_wire_drawing_bench() {
+  local example="$root/examples/wire_drawing"
+  "$example/bench.sh" "${coarse_wire[@]}"
+  "$python" "$root/scripts/plot_bench.py" "$example/results/bench/bench.json" \
+    -o "$example/results/bench/bench.png"
+  publish "$example/results/bench/bench.png" wire-drawing-bench.png
+}
+
+make_wire_drawing() {
+  # The paper's case as far as its coupling converges (docs/wire-drawing.md): 41 steps run,
+  # the figure of the 36 converged ones.
+  local example="$root/examples/wire_drawing"
+  "$example/run.sh" --name full --steps 41 || true  # steps 40 and 41 stop unconverged
+  "$python" "$example/plot.py" "$example/results/full" --until 36
+  publish "$example/results/full/wire-drawing.png" wire-drawing.png
+}
+
+if [ $# -eq 0 ] || [ "$1" = --help ] || [ "$1" = -h ]; then
+  sed -n '2,8p' "$0"
+  exit 0
+fi
+if [ "$1" = --list ]; then
+  printf '%-20s %-24s %-8s %s\n' figure needs time page
+  for entry in "${figures[@]}"; do
+    IFS='|' read -r name needs time page <<< "$entry"
+    printf '%-20s %-24s %-8s %s\n' "$name" "$needs" "$time" "$page"
+  done
+  exit 0
+fi
+names=("$@")
+if [ "$1" = all ]; then
+  names=()
+  for entry in "${figures[@]}"; do names+=("${entry%%|*}"); done
+fi
+for name in "${names[@]}"; do
+  known=0
+  for entry in "${figures[@]}"; do [ "${entry%%|*}" = "$name" ] && known=1; done
+  if [ $known = 0 ]; then
+    echo "make_doc_figures: no figure '$name' (--list shows them)" >&2
+    exit 2
+  fi
+done
+cocopp=$(cocopp_executable "$root")
+for name in "${names[@]}"; do "make_$name"; done
