@@ -24,8 +24,8 @@ struct Case {
   std::string results_name;   ///< file stem of the HDF5 file and the JSON summary
   bool vtk_output = false;    ///< also write the interface for ParaView every step (VtkSeries)
   std::vector<int> vtk_iterations;  ///< steps whose every coupling iteration is written too
-  Watchpoints watchpoints;    ///< settings.watchpoints: variables at points, every step
-  int state_interval = 0;     ///< also save the coupled-solver state every this many steps
+  Watchpoints watchpoints;          ///< settings.watchpoints: variables at points, every step
+  int state_interval = 0;           ///< also save the coupled-solver state every this many steps
   /// The solvers' working directories named in the case (the run locks them).
   std::vector<std::filesystem::path> working_directories;
   /// A restarted run: the saved state it continues from (run.timestep_start is its step).

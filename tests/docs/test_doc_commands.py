@@ -4,8 +4,9 @@
 1. every command shown in README.md and docs/*.md (shell lines of the untyped and sh code
    blocks, and `$ ` lines of text blocks) is listed in tests/docs/doc_commands.yaml with how CI
    proves it, and every entry there is still shown somewhere;
-2. the entries marked `run: true` are run as shown, in order, from the checkout's root, with
-   the build's cocopp first on PATH; each must succeed;
+2. the entries marked `run: true` are run as shown, in order, from the root of a copy of the
+   checkout (README, docs, examples and scripts; `build` is the build tree), with the build's
+   cocopp first on PATH; each must succeed;
 3. the sample outputs in the docs match the fresh runs: README's progress lines (iterations
    exactly, residuals within 1 %) and summary, and docs/bench.md's table (status, steps and
    iteration counts exactly, errors within 5 %; times are the machine's).
@@ -18,6 +19,7 @@ import re
 import shutil
 import subprocess
 import sys
+import tempfile
 
 import yaml
 
@@ -74,6 +76,16 @@ def documented_commands(source):
                 elif language in ("", "sh", "bash") and is_command(text.strip(), source):
                     found.setdefault(normalize(text), f"{os.path.relpath(path, source)}:{number}")
     return found
+
+
+def tracked_files(source, parts):
+    """The files of `parts` that git tracks (what a fresh checkout has, without the products of
+    earlier runs)."""
+    listed = subprocess.run(["git", "-C", source, "ls-files", "--", *parts],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    if listed.returncode != 0 or not listed.stdout.strip():
+        sys.exit(f"FAILED: cannot list the checkout's files with git: {listed.stderr}")
+    return listed.stdout.splitlines()
 
 
 def doc_block(path, first_line):
@@ -161,23 +173,24 @@ def main():
         ways = [key for key in ("run", "tested_by", "not_run") if entry.get(key)]
         check(len(ways) == 1, f"'{command}' says how CI covers it, once ({ways})")
 
-    # Run them, in order, as a user in the checkout would (results land in the examples'
-    # gitignored results/ directories).
+    # Run them, in order, as a user in a checkout would: in a copy, so that the runs leave
+    # nothing in the examples other tests copy.
     env = {key: value for key, value in os.environ.items() if not key.startswith("COCOPP_")}
     env["PATH"] = f"{bin_dir}:/usr/bin:/bin:{env.get('PATH', '')}"
-    build_bin = os.path.join(source, "build", "bin")
-    if os.path.realpath(build_bin) != os.path.realpath(bin_dir):
-        sys.exit(f"FAILED: the docs say build/bin/cocopp; run this test on {build_bin}")
-    shutil.rmtree(os.path.join(source, "examples/tube/flow_structure/results"), ignore_errors=True)
     outputs = {}
-    for command, entry in listed.items():
-        if not entry.get("run"):
-            continue
-        result = subprocess.run(["bash", "-c", command], cwd=source, env=env,
-                                stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-        check(result.returncode == 0, f"ran: {command}"
-              + ("" if result.returncode == 0 else f"\n{result.stdout[-3000:]}"))
-        outputs[command] = result.stdout
+    with tempfile.TemporaryDirectory(prefix="cocopp-doc-commands-") as checkout:
+        for path in tracked_files(source, ("README.md", "docs", "examples", "scripts")):
+            os.makedirs(os.path.join(checkout, os.path.dirname(path)), exist_ok=True)
+            shutil.copy2(os.path.join(source, path), os.path.join(checkout, path))
+        os.symlink(os.path.dirname(bin_dir), os.path.join(checkout, "build"))
+        for command, entry in listed.items():
+            if not entry.get("run"):
+                continue
+            result = subprocess.run(["bash", "-c", command], cwd=checkout, env=env,
+                                    stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+            check(result.returncode == 0, f"ran: {command}"
+                  + ("" if result.returncode == 0 else f"\n{result.stdout[-3000:]}"))
+            outputs[command] = result.stdout
 
     readme = doc_block(os.path.join(source, "README.md"), "cocopp 0.1.0: case")
     count = compare_progress(readme, outputs["cocopp run examples/tube/flow_structure/case.yaml"])

@@ -39,8 +39,22 @@ fs::path copy_example(const std::string& example, const std::string& tag) {
       fs::temp_directory_path() / ("cocopp_test_" + tag + "_" + std::to_string(::getpid()));
   fs::remove_all(target);
   fs::create_directories(target);
-  fs::copy(source, target, fs::copy_options::recursive);
-  fs::remove_all(target / "results");
+  for (auto entry = fs::recursive_directory_iterator(source);
+       entry != fs::recursive_directory_iterator(); ++entry) {
+    const std::string name = entry->path().filename().string();
+    const bool run_product = name == "results" || name == "output" || name == "restart" ||
+                             name == ".cocopp.lock" || entry->path().extension() == ".log" ||
+                             entry->path().extension() == ".fifo";
+    if (run_product) {
+      entry.disable_recursion_pending();
+      continue;
+    }
+    const fs::path copy = target / fs::relative(entry->path(), source);
+    if (entry->is_directory())
+      fs::create_directories(copy);
+    else
+      fs::copy_file(entry->path(), copy);
+  }
   return target;
 }
 

@@ -18,7 +18,8 @@ struct CommandResult {
 CommandResult run_command(const std::string& command);
 /// `cocopp <arguments>` with the built executable.
 CommandResult run_cocopp(const std::string& arguments);
-/// A fresh copy of examples/<example> in a temporary directory.
+/// A fresh copy of examples/<example> in a temporary directory: what the example ships, without
+/// what runs of it left in the checkout (results/, output/, restart/, logs, locks, FIFOs).
 std::filesystem::path copy_example(const std::string& example, const std::string& tag);
 nlohmann::json read_json(const std::filesystem::path& file);
 /// All values of a dataset of a results (or state) file, flattened (ResultsReader).
