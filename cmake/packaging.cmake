@@ -37,8 +37,10 @@ install(FILES ${CMAKE_BINARY_DIR}/cocopp-sdk.pc DESTINATION ${CMAKE_INSTALL_LIBD
 install(PROGRAMS ${PROJECT_SOURCE_DIR}/scripts/plot_results.py DESTINATION share/cocopp)
 # Examples to copy and run (they write under their own results/): the tube cases on the
 # built-in solvers and a solver project built against the installed SDK.
+# What runs leave in an example (also in a developer's tree): not part of the example.
 set(run_outputs PATTERN results EXCLUDE PATTERN build EXCLUDE PATTERN output EXCLUDE
-                PATTERN "*.log" EXCLUDE PATTERN "*.fifo" EXCLUDE)
+                PATTERN restart EXCLUDE PATTERN "*.log" EXCLUDE PATTERN "*.fifo" EXCLUDE
+                PATTERN ".cocopp.lock" EXCLUDE PATTERN __pycache__ EXCLUDE)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples/tube/flow_structure
                   ${PROJECT_SOURCE_DIR}/examples/tube/flow_ringmodel
         DESTINATION share/cocopp/examples/tube ${run_outputs})

@@ -100,6 +100,13 @@ def main():
             check(f"{prefix}/bin/cocoppPimpleFoam" in output,
                   "the moved cocopp runs its own cocoppPimpleFoam")
 
+        # The examples as they ship: nothing that runs in the developer's tree left behind.
+        leftovers = [os.path.join(d, f) for d, dirs, files in os.walk(
+            os.path.join(prefix, "share", "cocopp", "examples")) for f in dirs + files
+            if f in ("results", "output", "restart", ".cocopp.lock", "build") or
+            f.endswith((".log", ".fifo"))]
+        check(not leftovers, f"the installed examples hold no run products {leftovers[:3]}")
+
         # The reference: the installed tube example (flow + built-in ring model), copied out.
         examples = os.path.join(prefix, "share", "cocopp", "examples")
         reference = os.path.join(scratch, "flow_ringmodel")
