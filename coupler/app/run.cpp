@@ -186,9 +186,8 @@ class Run {
     for (int step = first; step <= last; ++step) {
       current_step_ = step;
       const StepRecord record = coupled.solve_step(step, step * case_.run.delta_t);
-      const Interface& watched = case_.watchpoints.empty()
-                                     ? case_.watchpoints.layout()
-                                     : case_.watchpoints.sample(coupled.x(), coupled.y());
+      // No watchpoints: an empty interface, which the writer leaves out.
+      const Interface& watched = case_.watchpoints.sample(coupled.x(), coupled.y());
       writer_->write_step(record, coupled.x(), coupled.y(), watched);
       if (watchpoint_csv_) watchpoint_csv_->write_step(step, record.time, watched);
       if (vtk_) vtk_->write_step(step, record.time, vtk_parts(coupled.x(), coupled.y()));

@@ -47,9 +47,6 @@ Watchpoints::Watchpoints(const Settings& settings) {
     d.point = Eigen::RowVector3d(point[0], point[1], point[2]);
     d.model_part = item.get<std::string>("model_part", "");
     d.where = item.where("name") + ": watchpoint '" + d.name + "'";
-    d.interpolator_type = item.has("interpolator")
-                              ? item.child("interpolator").required<std::string>("type")
-                              : "nearest";
     d.on_x = create_interpolator(item);
     d.on_y = create_interpolator(item);
     definitions_.push_back(std::move(d));
@@ -89,7 +86,9 @@ void Watchpoints::build(Definition& d, Interpolator& interpolator, const ModelPa
 
 void Watchpoints::attach(const Interface& x, const Interface& y) {
   std::vector<Interface::Part> parts;
-  for (auto& d : definitions_) {
+  sources_.clear();
+  for (std::size_t index = 0; index < definitions_.size(); ++index) {
+    Definition& d = definitions_[index];
     if (d.model_part.empty()) d.model_part = nearest_model_part(d, x, y);
     const Interface::Part* on_x = find_part(x, d.model_part);
     const Interface::Part* on_y = find_part(y, d.model_part);
@@ -111,13 +110,18 @@ void Watchpoints::attach(const Interface& x, const Interface& y) {
     std::vector<std::string> variables;
     if (on_x) {
       build(d, *d.on_x, *on_x->model_part);
-      variables = on_x->variables;
+      for (const auto& variable : on_x->variables) {
+        variables.push_back(variable);
+        sources_.push_back({index, variable, true});
+      }
     }
     if (on_y) {
       build(d, *d.on_y, *on_y->model_part);
       for (const auto& variable : on_y->variables)
-        if (std::find(variables.begin(), variables.end(), variable) == variables.end())
+        if (std::find(variables.begin(), variables.end(), variable) == variables.end()) {
           variables.push_back(variable);
+          sources_.push_back({index, variable, false});
+        }
     }
     parts.push_back({watched, variables});
   }
@@ -125,21 +129,11 @@ void Watchpoints::attach(const Interface& x, const Interface& y) {
 }
 
 const Interface& Watchpoints::sample(const Interface& x, const Interface& y) {
-  for (const auto& d : definitions_) {
-    const Interface::Part* on_x = find_part(x, d.model_part);
-    for (const auto& block : values_.blocks()) {
-      if (block.model_part != d.name) continue;
-      const auto has = [&](const Interface::Part* part) {
-        return part && std::find(part->variables.begin(), part->variables.end(), block.variable) !=
-                           part->variables.end();
-      };
-      // x's values where x carries the variable (attach took x's variables first), else y's.
-      const bool from_x = has(on_x);
-      const Interface& source = from_x ? x : y;
-      const Interpolator& interpolator = from_x ? *d.on_x : *d.on_y;
-      values_.values(d.name, block.variable) =
-          interpolator.map(source.values(d.model_part, block.variable));
-    }
+  for (const Source& source : sources_) {
+    const Definition& d = definitions_[source.definition];
+    const Interpolator& interpolator = source.from_x ? *d.on_x : *d.on_y;
+    values_.values(d.name, source.variable) =
+        interpolator.map((source.from_x ? x : y).values(d.model_part, source.variable));
   }
   return values_;
 }

@@ -50,14 +50,21 @@ class Watchpoints {
     Eigen::RowVector3d point;
     std::string model_part;  ///< empty: the nearest
     std::string where;       ///< "case.yaml:7:9: watchpoint 'middle'"
-    std::string interpolator_type;
     /// One per interface (x, y): the interpolators are built on different points.
     std::unique_ptr<Interpolator> on_x, on_y;
   };
   std::string nearest_model_part(const Definition& d, const Interface& x, const Interface& y) const;
   void build(Definition& d, Interpolator& interpolator, const ModelPart& part) const;
 
+  /// Where each variable of a watchpoint comes from, decided once at attach().
+  struct Source {
+    std::size_t definition;  ///< index in definitions_
+    std::string variable;
+    bool from_x;  ///< x's values where x carries the variable, else y's
+  };
+
   std::vector<Definition> definitions_;
+  std::vector<Source> sources_;
   Interface values_;
 };
 

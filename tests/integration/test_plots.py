@@ -7,7 +7,6 @@ the bench figure has its three costs.
 
 usage: test_plots.py BIN_DIR SOURCE_DIR
 """
-import json
 import os
 import shutil
 import subprocess
@@ -22,15 +21,7 @@ import numpy as np  # noqa: E402
 from PIL import Image  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from test_install import check  # noqa: E402
-
-
-def run(command, cwd=None):
-    result = subprocess.run(command, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                            text=True)
-    if result.returncode != 0:
-        sys.exit(f"FAILED ({result.returncode}): {' '.join(command)}\n{result.stdout}")
-    return result.stdout
+from test_install import check, run  # noqa: E402
 
 
 def tube_run(bin_dir, source, scratch, name, criterion):
