@@ -7,6 +7,7 @@
 
 #include "core/case/registry.hpp"
 #include "core/data/interface.hpp"
+#include "solver_wrappers/solver_error.hpp"
 
 namespace cocopp {
 
@@ -58,6 +59,19 @@ class SolverWrapper {
   virtual void initialize_step(int step, double time) = 0;
   /// One coupling iteration: solve the step with `input`, return the output interface.
   virtual const Interface& solve(const Interface& input) = 0;
+  /// Solver-coupling convergence (the `solver_coupling_convergence` criterion): from now on,
+  /// every solve() also finds out whether the solver's own iterations (Newton, PIMPLE's outer
+  /// loop) converged at their first iteration, i.e. whether the input changed its solution by
+  /// less than the solver's own tolerance. Called once, after initialize(), only when the
+  /// case's criterion asks. Throws SolverError saying why when the solver cannot tell.
+  virtual void start_reporting_convergence() {
+    throw SolverError(name(), "solver '" + name() +
+                                  "' cannot report whether its own iterations converged at "
+                                  "their first iteration, which the "
+                                  "solver_coupling_convergence criterion needs");
+  }
+  /// After solve(): that answer for the last solve (false before reporting started).
+  virtual bool converged_at_first_iteration() const { return false; }
   /// Commit the converged state of the step.
   virtual void finalize_step() = 0;
   /// Write the solver's own output for the step.

@@ -56,6 +56,8 @@ std::string message_name(MessageType type) {
       return "STOP";
     case MessageType::kSaveRestart:
       return "SAVE_RESTART";
+    case MessageType::kReportConvergence:
+      return "REPORT_CONVERGENCE";
     case MessageType::kHello:
       return "HELLO";
     case MessageType::kOk:
@@ -68,6 +70,8 @@ std::string message_name(MessageType type) {
       return "ERROR";
     case MessageType::kRejected:
       return "REJECTED";
+    case MessageType::kDataConverged:
+      return "DATA_CONVERGED";
   }
   return "unknown message type " + std::to_string(static_cast<int>(type));
 }
@@ -117,6 +121,10 @@ Frame encode_interface(const sdk::InterfaceDescription& description) {
 
 Frame encode_data(const std::vector<double>& values) {
   return start(MessageType::kData).f64_array(values).take();
+}
+
+Frame encode_data_converged(const std::vector<double>& values, bool converged) {
+  return start(MessageType::kDataConverged).f64_array(values).u8(converged ? 1 : 0).take();
 }
 
 Frame encode_error(const std::string& message) {
@@ -195,6 +203,19 @@ std::vector<double> decode_data(const Frame& frame) {
   auto values = reader.f64_array();
   reader.expect_end();
   return values;
+}
+
+DataConverged decode_data_converged(const Frame& frame) {
+  FrameReader reader = open(frame, MessageType::kDataConverged);
+  DataConverged data;
+  data.values = reader.f64_array();
+  const std::uint8_t flag = reader.u8();
+  if (flag > 1)
+    throw ProtocolError("DATA_CONVERGED carries the flag " + std::to_string(flag) +
+                        "; it must be 0 or 1");
+  data.converged = flag == 1;
+  reader.expect_end();
+  return data;
 }
 
 namespace {

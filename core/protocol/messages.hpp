@@ -26,12 +26,14 @@ enum class MessageType : std::uint8_t {
   kOutputStep = 5,
   kStop = 6,
   kSaveRestart = 7,
+  kReportConvergence = 8,
   kHello = 128,
   kOk = 129,
   kInterface = 130,
   kData = 131,
   kError = 132,
   kRejected = 133,
+  kDataConverged = 134,
 };
 
 /// "SOLVE", "INTERFACE", ...; "unknown message type 7" for anything else.
@@ -55,7 +57,9 @@ Frame encode_initialize_step(const StepInfo& step);
 Frame encode_solve(const double* values, std::size_t count);
 /// SAVE_RESTART: write what the solver needs to restart after `step`, the step it finalized last.
 Frame encode_save_restart(std::int32_t step);
-/// A message without fields: FINALIZE_STEP, OUTPUT_STEP, STOP, or the reply OK.
+/// A message without fields: FINALIZE_STEP, OUTPUT_STEP, STOP, REPORT_CONVERGENCE (from now on
+/// answer SOLVE with DATA_CONVERGED; sent once, before the first step, only when the case's
+/// criterion needs it), or the reply OK.
 Frame encode_empty(MessageType type);
 
 // Solver -> coupler.
@@ -63,6 +67,9 @@ Frame encode_hello(const Hello& hello);
 Frame encode_interface(const sdk::InterfaceDescription& description);
 Frame encode_data(const std::vector<double>& values);
 Frame encode_error(const std::string& message);
+/// The reply to SOLVE after REPORT_CONVERGENCE: the output and whether the solver's own
+/// iterations (Newton, PIMPLE's outer loop) converged at their first iteration.
+Frame encode_data_converged(const std::vector<double>& values, bool converged);
 /// The reply to SOLVE of a solver that cannot solve the step for this input but keeps the
 /// step's start and serves on: the coupler may retry with another input.
 Frame encode_rejected(const std::string& message);
@@ -76,6 +83,12 @@ void decode_empty(const Frame& frame, MessageType expected);
 Hello decode_hello(const Frame& frame);
 sdk::InterfaceDescription decode_interface(const Frame& frame);
 std::vector<double> decode_data(const Frame& frame);
+struct DataConverged {
+  std::vector<double> values;
+  bool converged = false;
+};
+/// DATA_CONVERGED; the flag byte must be 0 or 1.
+DataConverged decode_data_converged(const Frame& frame);
 std::string decode_error(const Frame& frame);
 /// Longest ERROR or REJECTED text a solver may send once the interface is known (bytes).
 constexpr std::size_t kMaxReceivedText = 64 * 1024;

@@ -91,6 +91,10 @@ class MappedSolverWrapper : public SolverWrapper {
     return output_;
   }
 
+  void start_reporting_convergence() override { inner_->start_reporting_convergence(); }
+  bool converged_at_first_iteration() const override {
+    return inner_->converged_at_first_iteration();
+  }
   void finalize_step() override { inner_->finalize_step(); }
   void output_step() override { inner_->output_step(); }
   void save_restart(int step) override { inner_->save_restart(step); }

@@ -114,7 +114,8 @@ auto ProcessSolverWrapper::call(const std::string& request_name, const Frame* re
     const MessageType type = protocol::message_type(reply);
     if (type == MessageType::kError)
       throw ReportedError(protocol::printable_text(protocol::decode_error(reply)));
-    if (type == MessageType::kRejected && expected_reply == MessageType::kData)
+    if (type == MessageType::kRejected &&
+        (expected_reply == MessageType::kData || expected_reply == MessageType::kDataConverged))
       throw RejectedInput(protocol::printable_text(protocol::decode_rejected(reply)));
     if (type != expected_reply)
       throw protocol::ProtocolError("answered " + request_name + " with " +
@@ -328,8 +329,15 @@ const Interface& ProcessSolverWrapper::solve(const Interface& input) {
                     name_, input.describe(), input_interface_.describe()));
   ++iteration_;
   const Frame request = protocol::encode_solve(input.data().data(), input.size());
-  const std::vector<double> output =
-      call("solve", &request, MessageType::kData, timeout_, protocol::decode_data);
+  std::vector<double> output;
+  if (reporting_convergence_) {
+    auto data = call("solve", &request, MessageType::kDataConverged, timeout_,
+                     protocol::decode_data_converged);
+    output = std::move(data.values);
+    converged_at_first_iteration_ = data.converged;
+  } else {
+    output = call("solve", &request, MessageType::kData, timeout_, protocol::decode_data);
+  }
   if (static_cast<Eigen::Index>(output.size()) != output_interface_.size())
     fail(
         fmt::format("solver '{}' returned {} values from solve {}; its output interface has {} "
@@ -338,6 +346,13 @@ const Interface& ProcessSolverWrapper::solve(const Interface& input) {
                     output_interface_.describe()));
   output_interface_.set_data(Eigen::Map<const Eigen::VectorXd>(output.data(), output.size()));
   return output_interface_;
+}
+
+void ProcessSolverWrapper::start_reporting_convergence() {
+  if (reporting_convergence_) return;  // two criteria may ask the same solver
+  const Frame request = protocol::encode_empty(MessageType::kReportConvergence);
+  call("report_convergence", &request, MessageType::kOk, timeout_, decode_ok);
+  reporting_convergence_ = true;
 }
 
 void ProcessSolverWrapper::finalize_step() {

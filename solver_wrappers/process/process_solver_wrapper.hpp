@@ -63,6 +63,9 @@ class ProcessSolverWrapper : public SolverWrapper {
   const Interface& output_interface() const override { return output_interface_; }
   void initialize_step(int step, double time) override;
   const Interface& solve(const Interface& input) override;
+  /// Sends REPORT_CONVERGENCE; a solver that cannot tell answers ERROR with the reason.
+  void start_reporting_convergence() override;
+  bool converged_at_first_iteration() const override { return converged_at_first_iteration_; }
   void finalize_step() override;
   void output_step() override;
   void save_restart(int step) override;
@@ -137,6 +140,8 @@ class ProcessSolverWrapper : public SolverWrapper {
   int step_ = 0;
   bool step_started_ = false;
   int iteration_ = 0;
+  bool reporting_convergence_ = false;
+  bool converged_at_first_iteration_ = false;
   Interface input_interface_;
   Interface output_interface_;
 };

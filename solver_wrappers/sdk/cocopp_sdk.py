@@ -42,12 +42,13 @@ VARIABLE_COMPONENTS = {"displacement": 3, "pressure": 1, "traction": 3, "force":
                        "velocity": 3, "temperature": 1, "heat_flux": 1}
 
 # Message types, the first byte of every frame (docs/protocol.md, section 3).
-_INITIALIZE, _INITIALIZE_STEP, _SOLVE, _FINALIZE_STEP, _OUTPUT_STEP, _STOP, _SAVE_RESTART = range(
-    1, 8)
-_HELLO, _OK, _INTERFACE, _DATA, _ERROR, _REJECTED = range(128, 134)
+(_INITIALIZE, _INITIALIZE_STEP, _SOLVE, _FINALIZE_STEP, _OUTPUT_STEP, _STOP, _SAVE_RESTART,
+ _REPORT_CONVERGENCE) = range(1, 9)
+_HELLO, _OK, _INTERFACE, _DATA, _ERROR, _REJECTED, _DATA_CONVERGED = range(128, 135)
 _REQUEST_NAMES = {_INITIALIZE: "INITIALIZE", _INITIALIZE_STEP: "INITIALIZE_STEP",
                   _SOLVE: "SOLVE", _FINALIZE_STEP: "FINALIZE_STEP",
-                  _OUTPUT_STEP: "OUTPUT_STEP", _STOP: "STOP", _SAVE_RESTART: "SAVE_RESTART"}
+                  _OUTPUT_STEP: "OUTPUT_STEP", _STOP: "STOP", _SAVE_RESTART: "SAVE_RESTART",
+                  _REPORT_CONVERGENCE: "REPORT_CONVERGENCE"}
 _MAX_PAYLOAD = 1 << 30
 
 
@@ -185,6 +186,20 @@ class Solver:
     def save_restart(self, step):
         pass
 
+    def start_reporting_convergence(self):
+        """Solver-coupling convergence (the coupler's solver_coupling_convergence criterion):
+        called once, before the first step, when the case asks. From then on the coupler reads
+        converged_at_first_iteration() after every solve(): whether the solver's own iterations
+        converged at their first iteration (the new input changed its solution by less than
+        its own tolerance); a solver may then start each coupling iteration from the previous
+        iterate. A solver that cannot tell keeps this default, which raises: the coupler stops
+        with the message."""
+        raise RuntimeError("this solver cannot report whether its own iterations converged at "
+                           "their first iteration (solver-coupling convergence)")
+
+    def converged_at_first_iteration(self):
+        return False
+
 
 def wants_help(argv):
     return any(argument in ("--help", "-h") for argument in argv[1:])
@@ -231,6 +246,7 @@ class _Server:
         self.solver = solver
         self.channel = channel
         self.initialized = False
+        self.reporting_convergence = False
 
     def run(self):
         try:
@@ -288,6 +304,11 @@ class _Server:
             if self.solver.can_restart():
                 self.solver.save_restart(step)
             self.reply_ok()
+        elif kind == _REPORT_CONVERGENCE:
+            _expect_size(request, 1)
+            self.solver.start_reporting_convergence()
+            self.reporting_convergence = True
+            self.reply_ok()
         else:  # STOP
             _expect_size(request, 1)
             self.solver.finalize()
@@ -326,7 +347,12 @@ class _Server:
             return
         output = _vector(output, interface.output_size, "solve() returned",
                          "as the interface description implies")
-        self.channel.send(bytes([_DATA]) + _f64_array(output))
+        if self.reporting_convergence:
+            converged = bool(self.solver.converged_at_first_iteration())
+            self.channel.send(bytes([_DATA_CONVERGED]) + _f64_array(output) +
+                              bytes([1 if converged else 0]))
+        else:
+            self.channel.send(bytes([_DATA]) + _f64_array(output))
 
 
 # --- encoding -------------------------------------------------------------------------------

@@ -119,6 +119,11 @@ class Server {
         if (solver_.can_restart()) solver_.save_restart(step);
         return reply_ok();
       }
+      case MessageType::kReportConvergence:
+        protocol::decode_empty(request, type);
+        solver_.start_reporting_convergence();
+        reporting_convergence_ = true;
+        return reply_ok();
       case MessageType::kStop:
         protocol::decode_empty(request, type);
         solver_.finalize();
@@ -163,7 +168,9 @@ class Server {
       throw std::runtime_error("solve() returned " + std::to_string(output.size()) +
                                " values; the interface description implies " +
                                std::to_string(output_size_));
-    channel_.send(protocol::encode_data(output));
+    channel_.send(reporting_convergence_ ? protocol::encode_data_converged(
+                                               output, solver_.converged_at_first_iteration())
+                                         : protocol::encode_data(output));
   }
 
   // Errors in the description are the solver's: report them here, where they are made.
@@ -192,6 +199,7 @@ class Server {
   protocol::Transport& channel_;
   pid_t coupler_pid_;
   bool initialized_ = false;
+  bool reporting_convergence_ = false;
   std::size_t input_size_ = 0;
   std::size_t output_size_ = 0;
 };

@@ -46,6 +46,21 @@ class Solver {
   /// never asked to save, and a restart of it stops with an error that says so.
   virtual bool can_restart() const { return false; }
   virtual void save_restart(std::int32_t /*step*/) {}
+
+  /// Solver-coupling convergence (the coupler's `solver_coupling_convergence` criterion). The
+  /// coupler calls start_reporting_convergence() once, before the first step, when the case
+  /// asks; from then on it reads converged_at_first_iteration() after every solve(): whether
+  /// the solver's own iterations (Newton, an outer loop) converged at their first iteration,
+  /// i.e. the new input changed the solution by less than the solver's own tolerance. For that
+  /// a solver may start each coupling iteration from the previous iterate instead of the
+  /// step's start. A solver that cannot tell keeps the default, which throws: the coupler
+  /// stops with that message.
+  virtual void start_reporting_convergence() {
+    throw std::runtime_error(
+        "this solver cannot report whether its own iterations converged at their first "
+        "iteration (solver-coupling convergence)");
+  }
+  virtual bool converged_at_first_iteration() const { return false; }
 };
 
 /// Whether the command line asks for help (--help or -h): solvers print their usage then.

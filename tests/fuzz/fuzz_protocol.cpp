@@ -29,6 +29,7 @@ void decode_as_its_type(const Frame& frame) {
     case MessageType::kFinalizeStep:
     case MessageType::kOutputStep:
     case MessageType::kStop:
+    case MessageType::kReportConvergence:
     case MessageType::kOk:
       decode_empty(frame, message_type(frame));
       return expect_same(encode_empty(message_type(frame)), frame);
@@ -38,6 +39,10 @@ void decode_as_its_type(const Frame& frame) {
       return expect_same(encode_interface(decode_interface(frame)), frame);
     case MessageType::kData:
       return expect_same(encode_data(decode_data(frame)), frame);
+    case MessageType::kDataConverged: {
+      const auto data = decode_data_converged(frame);
+      return expect_same(encode_data_converged(data.values, data.converged), frame);
+    }
     case MessageType::kError:
       (void)printable_text(decode_error(frame));
       return;

@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """The Python solver SDK (solver_wrappers/sdk/cocopp_sdk.py) against the coupler, ctest
 `python_sdk`: examples/external_solver/ring_wall.py coupled to the built-in tube flow over both
-transports (the built-in ring model's results to the bit), and what goes wrong on the solver's
-side reaching the user as the C++ SDK sends it: a rejected input, a wrong output size, an
+transports (the built-in ring model's results to the bit), solver-coupling convergence reported
+by the solver (and refused by one that cannot), and what goes wrong on the solver's side
+reaching the user as the C++ SDK sends it: a rejected input, a wrong output size, an
 exception, a start outside cocopp, --help.
 
 usage: test_python_sdk.py BIN_DIR SOURCE_DIR
@@ -30,6 +31,17 @@ FAULTS = {
         if step == 2:
             raise RuntimeError("the wall cracked in step 2")
 """,
+    "converges_at_third": """
+    def initialize_step(self, step, time):
+        self.iteration = 0
+    def solve(self, values):
+        self.iteration += 1
+        return super().solve(values)
+    def start_reporting_convergence(self):
+        pass
+    def converged_at_first_iteration(self):
+        return self.iteration == 3
+""",
     "rejects_once": """
     rejected = False
     def solve(self, values):
@@ -49,9 +61,18 @@ def cocopp_run(bin_dir, case_directory, case_file, env):
                           stderr=subprocess.STDOUT, text=True)
 
 
-def write_case(directory, name, command, transport="pipe", steps=100):
+SOLVER_CONVERGENCE = """      - type: solver_coupling_convergence
+        solver_index: 1
+"""
+
+
+def write_case(directory, name, command, transport="pipe", steps=100, solver_convergence=False):
     with open(os.path.join(directory, "case.yaml")) as original:
         text = original.read()
+    if solver_convergence:  # the wall's report instead of the residual
+        relative = "      - type: relative_norm\n        tolerance: 1.0e-6\n"
+        check(relative in text, "case.yaml has the relative_norm criterion to replace")
+        text = text.replace(relative, SOLVER_CONVERGENCE)
     text = text.replace("../build/ring-wall", command).replace("number_of_timesteps: 100",
                                                                f"number_of_timesteps: {steps}")
     text = text.replace("    working_directory: structure\n",
@@ -89,7 +110,10 @@ def main():
                              "class RingWall(ring_wall.RingWall):" + method +
                              "\nring_wall.RingWall = RingWall\n"
                              "sys.exit(ring_wall.main(sys.argv))\n")
-            write_case(project, f"{fault}.yaml", f"python3, ../{fault}.py", steps=5)
+            write_case(project, f"{fault}.yaml", f"python3, ../{fault}.py", steps=5,
+                       solver_convergence=fault == "converges_at_third")
+        write_case(project, "cannot_report.yaml", "python3, ../ring_wall.py", steps=5,
+                   solver_convergence=True)
         env_faults = dict(env, PYTHONPATH=env["PYTHONPATH"] + os.pathsep + project)
 
         result = cocopp_run(bin_dir, project, "wrong_size.yaml", env_faults)
@@ -102,6 +126,16 @@ def main():
               "an exception in the solver stops the run with its text")
         with h5py.File(os.path.join(project, "results", "exception.h5"), "r") as results:
             check(np.array_equal(results["steps/step"][:], [1]), "the step before it is kept")
+        result = cocopp_run(bin_dir, project, "converges_at_third.yaml", env_faults)
+        with h5py.File(os.path.join(project, "results", "converges_at_third.h5"), "r") as results:
+            check(result.returncode == 0 and
+                  np.array_equal(results["steps/iterations"][:], [3] * 5),
+                  "solver-coupling convergence: the wall's report ends every step at the "
+                  "iteration it names")
+        result = cocopp_run(bin_dir, project, "cannot_report.yaml", env)
+        check(result.returncode != 0 and "solver 'wall' reported an error: this solver cannot "
+              "report whether its own iterations converged" in result.stdout,
+              "a solver that cannot report solver-coupling convergence says so")
         result = cocopp_run(bin_dir, project, "rejects_once.yaml", env_faults)
         with open(os.path.join(project, "results", "rejects_once.summary.json")) as summary:
             check(result.returncode == 0 and "step 3: solver 'wall' rejected the input of "

@@ -27,7 +27,7 @@ TEST(MessagesTest, RequestsRoundTrip) {
   EXPECT_EQ(decode_solve(encode_solve(values.data(), values.size())), values);
 
   for (auto type : {MessageType::kFinalizeStep, MessageType::kOutputStep, MessageType::kStop,
-                    MessageType::kOk}) {
+                    MessageType::kReportConvergence, MessageType::kOk}) {
     const Frame frame = encode_empty(type);
     EXPECT_EQ(frame.size(), 1u);
     EXPECT_EQ(message_type(frame), type);
@@ -45,6 +45,11 @@ TEST(MessagesTest, RepliesRoundTrip) {
             "diverged: Courant number 12");
   EXPECT_EQ(decode_rejected(encode_rejected("2 cells inside out")), "2 cells inside out");
   EXPECT_EQ(message_name(message_type(encode_rejected("x"))), "REJECTED");
+  for (bool converged : {false, true}) {
+    const auto data = decode_data_converged(encode_data_converged({0.5, -1.0}, converged));
+    EXPECT_EQ(data.values, (std::vector<double>{0.5, -1.0}));
+    EXPECT_EQ(data.converged, converged);
+  }
 
   const auto original = two_part_description();
   const auto decoded = decode_interface(encode_interface(original));
@@ -66,6 +71,19 @@ TEST(MessagesTest, FirstByteIsTheType) {
   EXPECT_EQ(encode_hello({})[0], 128);
   EXPECT_EQ(encode_error("x")[0], 132);
   EXPECT_EQ(encode_rejected("x")[0], 133);
+  EXPECT_EQ(encode_data_converged({}, true)[0], 134);
+  EXPECT_EQ(encode_empty(MessageType::kReportConvergence)[0], 8);
+}
+
+TEST(MessagesTest, AConvergedFlagOtherThanZeroOrOneIsRejected) {
+  Frame frame = encode_data_converged({1.0}, true);
+  frame.back() = 2;
+  try {
+    decode_data_converged(frame);
+    FAIL() << "no exception";
+  } catch (const ProtocolError& e) {
+    EXPECT_STREQ(e.what(), "DATA_CONVERGED carries the flag 2; it must be 0 or 1");
+  }
 }
 
 TEST(MessagesTest, WrongTypeIsAProtocolErrorNamingBoth) {
