@@ -15,6 +15,9 @@ class Combined : public ConvergenceCriterion {
       criteria_.push_back(ConvergenceCriterionRegistry::instance().create(child));
     if (criteria_.empty()) s.fail("criteria", "needs at least one criterion");
   }
+  void attach_solvers(const std::array<SolverWrapper*, 2>& solvers) override {
+    for (auto& c : criteria_) c->attach_solvers(solvers);
+  }
   void initialize_step() override {
     for (auto& c : criteria_) c->initialize_step();
   }

@@ -1,10 +1,12 @@
 #pragma once
 // Convergence criteria decide when the coupling iterations of a time step stop.
 #include <Eigen/Core>
+#include <array>
 #include <string>
 #include <vector>
 
 #include "core/case/registry.hpp"
+#include "solver_wrappers/solver_wrapper.hpp"
 
 namespace cocopp {
 
@@ -22,6 +24,9 @@ class ConvergenceCriterion {
   static constexpr const char* kind = "convergence criterion";
   virtual ~ConvergenceCriterion() = default;
 
+  /// Called once, after both solvers started: criteria that ask a solver (solver-coupling
+  /// convergence) take it here; `solvers` in the case's order.
+  virtual void attach_solvers(const std::array<SolverWrapper*, 2>& /*solvers*/) {}
   /// Called at the start of every time step.
   virtual void initialize_step() = 0;
   /// Called with the residual r = x~ - x of every coupling iteration.

@@ -60,6 +60,7 @@ void CoupledSolver::initialize(SolverWrapper& first, SolverWrapper& second) {
   // Start from the displacement the second solver reports for its initial state.
   x_.set_data(second.output_interface().data());
   predictor_->initialize(x_.data());
+  criterion_->attach_solvers(solvers_);
   on_initialized();
 }
 

@@ -307,6 +307,15 @@ void CalculixSolverWrapper::initialize_step(int step, double /*time*/) {
   iteration_ = 0;
 }
 
+void CalculixSolverWrapper::start_reporting_convergence() {
+  throw SolverError(
+      name_, fmt::format("solver '{}' (calculix) cannot report solver-coupling convergence: ccx "
+                         "solves every coupling iteration again from the step's start, so its "
+                         "Newton iterations never start from the previous iterate. Give this "
+                         "solver's side a residual criterion (relative_norm) instead",
+                         name_));
+}
+
 const Interface& CalculixSolverWrapper::solve(const Interface& input) {
   if (!input.same_layout(input_interface_))
     throw std::invalid_argument(

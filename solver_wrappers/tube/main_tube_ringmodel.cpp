@@ -23,6 +23,9 @@ Input file keys (SI units):
   rho_f                   fluid density (> 0, required)
   e, h                    Young's modulus and thickness of the wall (> 0, required)
   p_ref                   pressure at which the wall is undeformed (default 0)
+  residual_atol           solver-coupling convergence: the change of the displacement (m) below
+                          which a solve counts as converged at its first iteration (> 0;
+                          needed only by the solver_coupling_convergence criterion)
   output:
     interval              write output/tube_ringmodel_<step>.vtk every N steps (0 = never)
     directory             output directory (default output)

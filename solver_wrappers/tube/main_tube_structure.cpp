@@ -24,6 +24,9 @@ Input file keys (SI units):
   e, h                    Young's modulus and thickness of the wall (> 0, required)
   nu                      Poisson's ratio (in [0, 0.5), required)
   p_ref                   pressure at which the wall is undeformed (default 0)
+  residual_atol           solver-coupling convergence: the residual of the wall equation (m) below
+                          which a solve counts as converged at its first iteration (> 0;
+                          needed only by the solver_coupling_convergence criterion)
   time_scheme:
     type                  backward_euler (default) | newmark
     gamma                 Newmark gamma (>= 1/2, default 1/2)

@@ -188,6 +188,10 @@ Eigen::VectorXd TubeFlow::solve(const Eigen::VectorXd& displacement) {
   set_displacement(displacement);
   Eigen::VectorXd f = residual(unknowns_);
   double norm = f.norm();
+  // As CoCoNuT's tube flow: the previous iterate, judged against the step's f0.
+  converged_at_first_iteration_ =
+      !first_iteration_ &&
+      (initial_residual_ == 0.0 ? norm == 0.0 : norm / initial_residual_ < parameters_.newtontol);
   // f0 is taken at the first coupling iteration and kept for the whole time step, so later
   // iterations converge to the same absolute level. If the system was exactly solved at the
   // first iteration (f0 = 0), the first nonzero residual of the step takes its place.

@@ -91,6 +91,11 @@ class TubeFlow {
   int newton_iterations() const { return newton_iterations_; }
   /// ||f|| / f0 after the last solve.
   double relative_residual() const { return relative_residual_; }
+  /// Solver-coupling convergence: the last solve needed no Newton step, because the previous
+  /// iterate already met newtontol for the new displacement (never at a step's first solve).
+  bool converged_at_first_iteration() const { return converged_at_first_iteration_; }
+  /// Newton always starts from the previous iterate: nothing to check.
+  void start_reporting_convergence() const {}
 
   // The discrete system at the current areas, old values and inlet value, exposed so that
   // tests can check the Jacobian against finite differences.
@@ -131,6 +136,7 @@ class TubeFlow {
   double initial_residual_ = 0.0;  ///< f0 of the current time step
   int newton_iterations_ = 0;
   double relative_residual_ = 0.0;
+  bool converged_at_first_iteration_ = false;
 };
 
 }  // namespace cocopp::tube

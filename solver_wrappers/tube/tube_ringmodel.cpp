@@ -20,6 +20,8 @@ TubeRingmodelParameters TubeRingmodelParameters::read(const Settings& input) {
   parameters.e = input.required_in_range("e", Range::positive());
   parameters.h = input.required_in_range("h", Range::positive());
   parameters.p_ref = input.get<double>("p_ref", 0.0);
+  if (input.has("residual_atol"))
+    parameters.residual_atol = input.required_in_range("residual_atol", Range::positive());
   parameters.output = OutputSettings::read(input);
   return parameters;
 }
@@ -70,9 +72,19 @@ Eigen::VectorXd TubeRingmodel::solve(const Eigen::VectorXd& pressure) {
   }
   Eigen::VectorXd displacement(cells());
   for (int i = 0; i < cells(); ++i) displacement[i] = displacement_at(pressure[i]);
+  converged_at_first_iteration_ = parameters_.residual_atol > 0.0 &&
+                                  (displacement - displacement_).norm() < parameters_.residual_atol;
   pressure_ = pressure;
   displacement_ = displacement;
   return displacement_;
+}
+
+void TubeRingmodel::start_reporting_convergence() const {
+  if (parameters_.residual_atol <= 0.0)
+    throw std::runtime_error(
+        "solver-coupling convergence needs residual_atol in the tube ring model's input file: "
+        "the change of the displacement (m) below which a solve counts as converged, e.g. "
+        "residual_atol: 1.0e-12");
 }
 
 RestartData TubeRingmodel::restart_data() const {

@@ -16,6 +16,9 @@ struct TubeRingmodelParameters {
   double e = 0.0;      ///< Young's modulus, Pa
   double h = 0.0;      ///< wall thickness, m
   double p_ref = 0.0;  ///< pressure at which the wall is undeformed, Pa
+  /// Solver-coupling convergence: the largest change of the displacement (2-norm, m) that
+  /// counts as converged; 0 = not given.
+  double residual_atol = 0.0;
   OutputSettings output;
 
   /// Moens-Korteweg wave speed squared, E h / (rho_f d).
@@ -35,6 +38,11 @@ class TubeRingmodel {
   /// ...") where p / rho_f >= 2 c0^2 + p_ref / rho_f (the tube law has no finite area there).
   Eigen::VectorXd solve(const Eigen::VectorXd& pressure);
   void finalize_step() {}
+  /// Solver-coupling convergence needs residual_atol: throws std::runtime_error without it.
+  void start_reporting_convergence() const;
+  /// The previous displacement already met the tube law for the new pressure within
+  /// residual_atol (CoCoNuT's ring model judges its areas alike).
+  bool converged_at_first_iteration() const { return converged_at_first_iteration_; }
   /// The ParaView file of `step` at `time` (s), if the output interval says so.
   void output_step(int step, double time) const;
   /// What a restart after this step needs, and back (`file` names the source in errors).
@@ -56,6 +64,7 @@ class TubeRingmodel {
   double c02_;  ///< c0^2 = cmk2 - p_ref / (2 rho_f)
   Eigen::VectorXd pressure_;
   Eigen::VectorXd displacement_;
+  bool converged_at_first_iteration_ = false;
 };
 
 }  // namespace cocopp::tube

@@ -90,6 +90,10 @@ class TubeSolver : public sdk::Solver {
     return Side::output(*model_);
   }
 
+  void start_reporting_convergence() override { model_->start_reporting_convergence(); }
+  bool converged_at_first_iteration() const override {
+    return model_->converged_at_first_iteration();
+  }
   void finalize_step() override { model_->finalize_step(); }
   void output_step() override { output(); }
 

@@ -45,6 +45,8 @@ TubeStructureParameters TubeStructureParameters::read(const Settings& input) {
   parameters.h = input.required_in_range("h", Range::positive());
   parameters.nu = input.required_in_range("nu", Range{0.0, 0.5, false, true});
   parameters.p_ref = input.get<double>("p_ref", 0.0);
+  if (input.has("residual_atol"))
+    parameters.residual_atol = input.required_in_range("residual_atol", Range::positive());
   read_time_scheme(input, parameters);
   parameters.output = OutputSettings::read(input);
   return parameters;
@@ -74,7 +76,8 @@ TubeStructure::TubeStructure(TubeStructureParameters parameters, double delta_t,
       mass / (parameters_.beta * delta_t * delta_t) + 6.0 * b1_ / dz4 + 2.0 * b2_ / dz2 + b3_;
   neighbour_ = -4.0 * b1_ / dz4 - b2_ / dz2;
   second_ = b1_ / dz4;
-  lu_ = BandedLu(assemble());
+  matrix_ = assemble();
+  lu_ = BandedLu(matrix_);
 
   radius_ = Eigen::VectorXd::Constant(cells_, r0_);
   old_radius_ = radius_;
@@ -136,8 +139,19 @@ Eigen::VectorXd TubeStructure::solve(const Eigen::VectorXd& pressure) {
     }
     rhs[i] = value / diagonal_;
   }
+  converged_at_first_iteration_ =
+      parameters_.residual_atol > 0.0 &&
+      (matrix_.multiply(radius_) - rhs).norm() < parameters_.residual_atol;
   radius_ = lu_.solve(rhs);
   return displacement();
+}
+
+void TubeStructure::start_reporting_convergence() const {
+  if (parameters_.residual_atol <= 0.0)
+    throw std::runtime_error(
+        "solver-coupling convergence needs residual_atol in the tube structure's input file: "
+        "the residual of the wall equation (m) below which the previous iterate counts as "
+        "converged, e.g. residual_atol: 1.0e-12");
 }
 
 void TubeStructure::finalize_step() {

@@ -25,6 +25,9 @@ struct TubeStructureParameters {
   TimeScheme time_scheme = TimeScheme::kBackwardEuler;
   double beta = 1.0;   ///< Newmark beta (1 for backward Euler)
   double gamma = 1.0;  ///< Newmark gamma (1 for backward Euler)
+  /// Solver-coupling convergence: the largest residual of the wall equation (rows scaled to
+  /// metres) at the previous iterate that counts as converged; 0 = not given.
+  double residual_atol = 0.0;
   OutputSettings output;
 
   static TubeStructureParameters read(const Settings& input);
@@ -39,6 +42,11 @@ class TubeStructure {
   void initialize_step();
   /// One coupling iteration: pressures (Pa) of the m cells -> radial displacements.
   Eigen::VectorXd solve(const Eigen::VectorXd& pressure);
+  /// Solver-coupling convergence needs residual_atol: throws std::runtime_error without it.
+  void start_reporting_convergence() const;
+  /// The wall equation for the new pressure was met by the previous iterate within
+  /// residual_atol: this solve changed nothing that matters (as CoCoNuT's ring model judges).
+  bool converged_at_first_iteration() const { return converged_at_first_iteration_; }
   /// Commit the step: update the wall velocity and acceleration.
   void finalize_step();
   /// The ParaView file of `step` at `time` (s), if the output interval says so.
@@ -71,10 +79,12 @@ class TubeStructure {
   double dz_;
   double r0_;
   double b1_, b2_, b3_;
-  double diagonal_;   ///< C: every row is divided by it
-  double neighbour_;  ///< coefficient of r_{i-1}, r_{i+1}
-  double second_;     ///< coefficient of r_{i-2}, r_{i+2}
+  double diagonal_;               ///< C: every row is divided by it
+  double neighbour_;              ///< coefficient of r_{i-1}, r_{i+1}
+  double second_;                 ///< coefficient of r_{i-2}, r_{i+2}
+  BandedMatrix matrix_{1, 0, 0};  ///< the system, for the residual at the previous iterate
   BandedLu lu_;
+  bool converged_at_first_iteration_ = false;
   Eigen::VectorXd radius_, old_radius_;
   Eigen::VectorXd velocity_, old_velocity_;
   Eigen::VectorXd acceleration_, old_acceleration_;

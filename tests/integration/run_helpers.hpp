@@ -24,6 +24,8 @@ std::filesystem::path copy_example(const std::string& example, const std::string
 nlohmann::json read_json(const std::filesystem::path& file);
 /// All values of a dataset of a results (or state) file, flattened (ResultsReader).
 std::vector<double> read_dataset(const std::filesystem::path& file, const std::string& name);
+/// ||a - b|| / ||a||: how far a run's dataset (read_dataset) is from a reference run's.
+double relative_difference(const std::vector<double>& a, const std::vector<double>& b);
 /// Replace the first occurrence of `from` in a file (a failed test if it is not there).
 void edit(const std::filesystem::path& file, const std::string& from, const std::string& to);
 

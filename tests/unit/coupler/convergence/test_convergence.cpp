@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "coupler/convergence/convergence_criterion.hpp"
+#include "tests/support/linear_solvers.hpp"
 
 using namespace cocopp;
 
@@ -90,4 +91,86 @@ TEST(Convergence, OrAndNesting) {
 
 TEST(Convergence, EmptyCombinationIsAnError) {
   EXPECT_THROW(make("type: or\ncriteria: []"), CaseError);
+}
+
+namespace {
+
+/// A solver whose answer to "converged at the first iteration" the test sets.
+class ReportingSolver : public cocopp::testing::InProcessSolver {
+ public:
+  explicit ReportingSolver(std::string name, bool can_report = true)
+      : InProcessSolver(std::move(name), Interface(), Interface()), can_report_(can_report) {}
+  const Interface& solve(const Interface&) override { return output_; }
+  void start_reporting_convergence() override {
+    if (!can_report_) SolverWrapper::start_reporting_convergence();
+    ++report_requests;
+  }
+  bool converged_at_first_iteration() const override { return converged; }
+  bool converged = false;
+  int report_requests = 0;
+
+ private:
+  bool can_report_;
+};
+
+}  // namespace
+
+TEST(Convergence, SolverCouplingConvergenceFollowsTheNamedSolversReport) {
+  auto c = make("type: solver_coupling_convergence\nsolver_index: 1");
+  EXPECT_EQ(c->describe(), "solver_coupling_convergence(solver_index 1)");  // before the run
+  ReportingSolver flow("flow"), wall("wall");
+  c->attach_solvers({&flow, &wall});
+  EXPECT_EQ(flow.report_requests, 0);  // only the solver it names is asked
+  EXPECT_EQ(wall.report_requests, 1);
+  EXPECT_EQ(c->describe(), "solver_coupling_convergence(wall)");
+  c->initialize_step();
+  EXPECT_FALSE(c->is_satisfied());
+  flow.converged = true;  // the other solver's report does not count
+  c->update(residual(1.0));
+  EXPECT_FALSE(c->is_satisfied());
+  EXPECT_EQ(c->progress(), "wall iterating");
+  wall.converged = true;
+  c->update(residual(1.0));
+  EXPECT_TRUE(c->is_satisfied());
+  EXPECT_TRUE(c->tolerance_met());
+  EXPECT_EQ(c->progress(), "wall converged");
+  c->initialize_step();  // a new step starts unconverged, whatever the last report said
+  EXPECT_FALSE(c->is_satisfied());
+}
+
+TEST(Convergence, SolverCouplingConvergenceOfBothSolversInsideAnd) {
+  auto c = make(
+      "type: and\ncriteria:\n  - {type: solver_coupling_convergence, solver_index: 0}\n"
+      "  - {type: solver_coupling_convergence, solver_index: 1}");
+  ReportingSolver flow("flow"), wall("wall");
+  c->attach_solvers({&flow, &wall});
+  EXPECT_EQ(flow.report_requests, 1);
+  EXPECT_EQ(wall.report_requests, 1);
+  c->initialize_step();
+  wall.converged = true;
+  c->update(residual(1.0));
+  EXPECT_FALSE(c->is_satisfied());
+  flow.converged = true;
+  c->update(residual(1.0));
+  EXPECT_TRUE(c->is_satisfied());
+}
+
+TEST(Convergence, SolverCouplingConvergenceOfASolverThatCannotReportIsAnErrorNamingIt) {
+  auto c = make("type: solver_coupling_convergence\nsolver_index: 0");
+  ReportingSolver flow("flow", false), wall("wall");
+  try {
+    c->attach_solvers({&flow, &wall});
+    FAIL() << "no exception";
+  } catch (const SolverError& e) {
+    EXPECT_EQ(e.solver_name(), "flow");
+    EXPECT_NE(std::string(e.what()).find("solver 'flow' cannot report whether its own "
+                                         "iterations converged"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(Convergence, SolverCouplingConvergenceNeedsSolverIndexZeroOrOne) {
+  EXPECT_THROW(make("type: solver_coupling_convergence"), CaseError);
+  EXPECT_THROW(make("type: solver_coupling_convergence\nsolver_index: 2"), CaseError);
 }
