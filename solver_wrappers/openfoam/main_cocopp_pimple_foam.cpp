@@ -25,7 +25,8 @@ enum class Command : Foam::label {
   kOutputStep,
   kFinalize,
   kExit,  ///< the coupler stopped before initializing
-  kSaveRestart
+  kSaveRestart,
+  kReportConvergence
 };
 
 /// From the master to every other rank: a command and its numbers. Nothing in a serial run.
@@ -67,6 +68,15 @@ class MasterSolver : public sdk::Solver {
   void save_restart(std::int32_t step) override {
     broadcast(Command::kSaveRestart, {static_cast<double>(step)});
     solver_.save_restart(step);
+  }
+  /// The master checks first (no collective work): a refusal then reaches the coupler while
+  /// the other ranks still wait for a command.
+  void start_reporting_convergence() override {
+    solver_.start_reporting_convergence();
+    broadcast(Command::kReportConvergence);
+  }
+  bool converged_at_first_iteration() const override {
+    return solver_.converged_at_first_iteration();  // PIMPLE's residuals are global
   }
   void finalize() override {
     broadcast(Command::kFinalize);
@@ -115,6 +125,9 @@ void follow_master(PimpleFoamSolver& solver) {
         break;
       case Command::kSaveRestart:
         solver.save_restart(static_cast<std::int32_t>(numbers.at(0)));
+        break;
+      case Command::kReportConvergence:
+        solver.start_reporting_convergence();
         break;
       case Command::kFinalize:
         solver.finalize();

@@ -38,6 +38,7 @@
 namespace cocopp::openfoam {
 
 class StepStartState;
+class FlowFields;
 
 /// pimpleControl that can abandon a PIMPLE loop part way (an input rejected after the mesh
 /// motion), so that the next solve starts again from the first outer corrector.
@@ -50,6 +51,11 @@ class RestartablePimpleControl : public Foam::pimpleControl {
     converged_ = false;
     mesh_.data::remove("finalIteration");
   }
+  /// Solver-coupling convergence needs residual controls and a second outer corrector.
+  bool has_residual_controls() const { return !residualControl_.empty() && nCorrPIMPLE() > 1; }
+  /// The residualControl entry that applies to `field` (-1: none), and its tolerance.
+  Foam::label control_index(const Foam::word& field) const { return applyToField(field); }
+  Foam::scalar tolerance(Foam::label control) const { return residualControl_[control].absTol; }
 };
 
 class PimpleFoamSolver : public sdk::Solver {
@@ -66,6 +72,12 @@ class PimpleFoamSolver : public sdk::Solver {
   /// save_restart writes whatever controlDict's writeControl says.
   bool can_restart() const override { return true; }
   void save_restart(std::int32_t step) override;
+  /// From now on the flow of every coupling iteration starts from the previous iterate's (on
+  /// the step's start mesh), and the solve reports whether the first outer corrector's initial
+  /// residuals were below residualControl's tolerances. Needs PIMPLE { nOuterCorrectors > 1;
+  /// residualControl {...} } in fvSolution.
+  void start_reporting_convergence() override;
+  bool converged_at_first_iteration() const override { return converged_at_first_iteration_; }
 
  private:
   /// What pimpleFoam creates before its time loop (createTime, the mesh, createFields, ...).
@@ -78,6 +90,10 @@ class PimpleFoamSolver : public sdk::Solver {
   /// The state at the start of the step, for every solve of the step.
   void store_step_start();
   void restore_step_start();
+  void clear_residual_record();
+  /// After the first outer corrector: the initial residual of every solve of a field with a
+  /// residualControl entry was below its tolerance.
+  bool first_corrector_met_residual_controls() const;
   void set_interface_displacement(const std::vector<double>& input);
   /// One PIMPLE time step without advancing time: the body of pimpleFoam's time loop.
   void solve_pimple();
@@ -113,8 +129,12 @@ class PimpleFoamSolver : public sdk::Solver {
   bool move_mesh_outer_correctors_ = false;
 
   std::unique_ptr<StepStartState> step_start_;
+  std::unique_ptr<FlowFields> previous_iterate_;  ///< with solver-coupling convergence only
   int iteration_ = 0;
   bool stepped_ = false;
+  bool warm_start_ = false;      ///< coupling iterations continue from the previous iterate
+  bool restore_fields_ = false;  ///< even so: the last solve was abandoned part way
+  bool converged_at_first_iteration_ = false;
 };
 
 }  // namespace cocopp::openfoam

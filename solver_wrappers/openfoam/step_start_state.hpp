@@ -1,6 +1,7 @@
 #pragma once
 // The state at the start of a time step that every coupling iteration of cocoppPimpleFoam
 // starts from: the mesh points and a copy of every field OpenFOAM writes, restored exactly.
+#include <algorithm>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -30,14 +31,16 @@ using Foam::word;
 template <class Field>
 class FieldCopies {
  public:
-  void store(const objectRegistry& registry) {
+  /// All of them but those named in `skip`.
+  void store(const objectRegistry& registry, const std::vector<word>& skip = {}) {
     copies_.clear();
     const HashTable<const Field*> fields = registry.lookupClass<Field>();
     for (const word& name : fields.sortedToc()) {
       const Field* field = fields[name];
       if (field->writeOpt() != IOobject::AUTO_WRITE) continue;
-      IOobject io(field->name() + "_cocoppStepStart", field->instance(), field->db(),
-                  IOobject::NO_READ, IOobject::NO_WRITE, false);
+      if (std::find(skip.begin(), skip.end(), name) != skip.end()) continue;
+      IOobject io(field->name() + "_cocoppCopy", field->instance(), field->db(), IOobject::NO_READ,
+                  IOobject::NO_WRITE, false);
       copies_.emplace_back(field->name(), std::make_unique<Field>(io, *field));
     }
   }
@@ -82,6 +85,37 @@ class StepStartState {
   FieldCopies<surfaceScalarField> surface_scalars_;
   FieldCopies<surfaceVectorField> surface_vectors_;
   FieldCopies<pointVectorField> point_vectors_;
+};
+
+/// The flow fields of a coupling iterate, without the mesh and the motion solver's fields.
+/// With solver-coupling convergence the next iterate starts from them, but on the step's start
+/// geometry: the mesh motion then stays a function of the input alone (the Laplacian motion
+/// solver depends on the current geometry), while the flow starts from the previous iterate.
+class FlowFields {
+ public:
+  void store(const fvMesh& mesh) {
+    vol_scalars_.store(mesh);
+    vol_vectors_.store(mesh, kMotionFields);
+    vol_symm_tensors_.store(mesh);
+    surface_scalars_.store(mesh);
+    surface_vectors_.store(mesh);
+  }
+  void restore(const fvMesh& mesh) const {
+    vol_scalars_.restore(mesh);
+    vol_vectors_.restore(mesh);
+    vol_symm_tensors_.restore(mesh);
+    surface_scalars_.restore(mesh);
+    surface_vectors_.restore(mesh);
+  }
+
+ private:
+  /// The cell fields of OpenFOAM's displacement and velocity motion solvers.
+  inline static const std::vector<word> kMotionFields = {"cellDisplacement", "cellMotionU"};
+  FieldCopies<volScalarField> vol_scalars_;
+  FieldCopies<volVectorField> vol_vectors_;
+  FieldCopies<volSymmTensorField> vol_symm_tensors_;
+  FieldCopies<surfaceScalarField> surface_scalars_;
+  FieldCopies<surfaceVectorField> surface_vectors_;
 };
 
 }  // namespace cocopp::openfoam
