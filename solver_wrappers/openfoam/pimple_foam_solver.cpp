@@ -307,34 +307,51 @@ void PimpleFoamSolver::clear_residual_record() {
   const_cast<dictionary&>(mesh_->solverPerformanceDict()).clear();
 }
 
-namespace {
-
-/// The largest initial residual of a field's solves recorded in `performance` (a
-/// solverPerformanceDict entry), over the directions the geometry has: the normal component
-/// of a wedge or an empty direction is solved as noise around zero, and its normalised
-/// residual says nothing (OpenFOAM's own residual control counts it, so a wedge never meets
-/// a velocity tolerance).
-scalar largest_initial_residual(const fvMesh& mesh, const entry& performance) {
+scalarList initial_residuals(const fvMesh& mesh, const entry& performance) {
   const word& field = performance.keyword();
-  scalar largest = 0;
   if (mesh.foundObject<volScalarField>(field)) {
-    for (const auto& solve : List<SolverPerformance<scalar>>(performance.stream()))
-      largest = max(largest, solve.initialResidual());
-  } else if (mesh.foundObject<volVectorField>(field)) {
-    const Vector<label>& directions = mesh.geometricD();
-    for (const auto& solve : List<SolverPerformance<vector>>(performance.stream()))
-      for (direction d = 0; d < vector::nComponents; ++d)
-        if (directions[d] == 1) largest = max(largest, solve.initialResidual()[d]);
-  } else {
-    FatalErrorInFunction << "residualControl names " << field
-                         << ", which is neither a scalar nor a vector field: solver-coupling "
-                            "convergence checks only those"
-                         << exit(FatalError);
+    const List<SolverPerformance<scalar>> solves(performance.stream());
+    scalarList residuals(solves.size());
+    forAll(solves, i) residuals[i] = solves[i].initialResidual();
+    return residuals;
   }
-  return largest;
+  if (mesh.foundObject<volVectorField>(field)) {
+    const List<SolverPerformance<vector>> solves(performance.stream());
+    const Vector<label>& directions = mesh.geometricD();
+    scalarList residuals(solves.size(), 0.0);
+    forAll(solves, i) for (direction d = 0; d < vector::nComponents; ++d) if (directions[d] == 1)
+        residuals[i] = max(residuals[i], solves[i].initialResidual()[d]);
+    return residuals;
+  }
+  FatalErrorInFunction << "residualControl names " << field
+                       << ", which is neither a scalar nor a vector field: cocoppPimpleFoam "
+                          "controls only those"
+                       << exit(FatalError);
+  return {};
 }
 
-}  // namespace
+bool RestartablePimpleControl::criteriaSatisfied() {
+  // As pimpleControl: nothing to judge before the second corrector or in the final one.
+  if (corr_ == 1 || residualControl_.empty() || finalIter()) return false;
+  const bool store_initial = storeInitialResiduals();
+  bool achieved = true;
+  bool checked = false;
+  for (const entry& performance : mesh_.solverPerformanceDict()) {
+    const label control = applyToField(performance.keyword());
+    if (control < 0) continue;
+    const scalarList residuals = initial_residuals(mesh_, performance);
+    if (residuals.empty()) continue;
+    checked = true;
+    fieldData& data = residualControl_[control];
+    bool relative = false;
+    if (store_initial)
+      data.initialResidual = residuals.first();
+    else
+      relative = residuals.last() / (data.initialResidual + ROOTVSMALL) < data.relTol;
+    achieved = achieved && (residuals.last() < data.absTol || relative);
+  }
+  return checked && achieved;
+}
 
 bool PimpleFoamSolver::first_corrector_met_residual_controls() const {
   bool checked = false;
@@ -342,8 +359,7 @@ bool PimpleFoamSolver::first_corrector_met_residual_controls() const {
     const label control = pimple_->control_index(performance.keyword());
     if (control < 0) continue;
     checked = true;
-    if (!(largest_initial_residual(*mesh_, performance) < pimple_->tolerance(control)))
-      return false;
+    if (!(max(initial_residuals(*mesh_, performance)) < pimple_->tolerance(control))) return false;
   }
   return checked;
 }
