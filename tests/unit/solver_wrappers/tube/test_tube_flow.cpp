@@ -131,6 +131,28 @@ TEST(TubeFlow, RepeatedIterationWithTheSameInputIsUnchanged) {
   EXPECT_LT((second - first).norm(), 1e-10 * first.norm());
 }
 
+// Solver-coupling convergence: a coupling iteration whose previous iterate already meets
+// newtontol for the new displacement needs no Newton step; never the step's first.
+TEST(TubeFlow, ReportsConvergenceAtTheFirstIterationOnlyWhenTheInputStaysTheSame) {
+  TubeFlowParameters parameters = testing::reference_flow(50);
+  parameters.newtonmax = 10;
+  parameters.newtontol = 1e-8;
+  TubeFlow flow(parameters, 1e-4);
+  flow.initialize_step();
+  const Eigen::VectorXd displacement = wavy_displacement(flow.cell_centres(), 0.0);
+  flow.solve(displacement);
+  EXPECT_FALSE(flow.converged_at_first_iteration());  // the step's first solve
+  flow.solve(1.5 * displacement);
+  EXPECT_FALSE(flow.converged_at_first_iteration());
+  EXPECT_GT(flow.newton_iterations(), 0);
+  flow.solve(1.5 * displacement);
+  EXPECT_TRUE(flow.converged_at_first_iteration());
+  flow.finalize_step();
+  flow.initialize_step();
+  flow.solve(1.5 * displacement);
+  EXPECT_FALSE(flow.converged_at_first_iteration());  // a new step starts unconverged
+}
+
 TEST(TubeFlow, FluidAtRestStaysAtRest) {
   TubeFlowParameters parameters = testing::reference_flow(20);
   parameters.inlet = {InletBoundary::kPressure, InletFunction::kConstant, 0.0, 0.0, 0.0};

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "solver_wrappers/tube/tube_ringmodel.hpp"
 #include "tests/unit/solver_wrappers/tube/tube_test_parameters.hpp"
@@ -37,6 +38,22 @@ TEST(TubeRingmodel, SmallPressuresGiveTheThinWallDeflection) {
   const double linear = pressure * 0.005 * 0.005 / (3e5 * 1e-3);
   EXPECT_NEAR(displacement, linear, 1e-3 * linear);
   EXPECT_EQ(rings.displacement_at(0.0), 0.0);
+}
+
+// Solver-coupling convergence: the new pressure moves the wall by less than residual_atol.
+TEST(TubeRingmodel, ReportsConvergenceWhenThePressureNoLongerMovesTheWall) {
+  TubeRingmodelParameters parameters = testing::reference_ringmodel(10);
+  EXPECT_THROW(TubeRingmodel(parameters).start_reporting_convergence(), std::runtime_error);
+  parameters.residual_atol = 1e-12;
+  TubeRingmodel wall(parameters);
+  wall.start_reporting_convergence();
+  const Eigen::VectorXd pressure = Eigen::VectorXd::Constant(10, 100.0);
+  wall.solve(pressure);
+  EXPECT_FALSE(wall.converged_at_first_iteration());
+  wall.solve(pressure);
+  EXPECT_TRUE(wall.converged_at_first_iteration());
+  wall.solve(1.01 * pressure);
+  EXPECT_FALSE(wall.converged_at_first_iteration());
 }
 
 TEST(TubeRingmodel, UnphysicalPressureThrows) {

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "solver_wrappers/tube/tube_structure.hpp"
 #include "tests/unit/solver_wrappers/tube/tube_test_parameters.hpp"
@@ -41,6 +42,25 @@ TEST(TubeStructure, SteadyStateMatchesTheRingDeflectionAwayFromTheEnds) {
   }
   // The clamped end holds the wall back.
   EXPECT_LT(displacement[0], 0.5 * expected);
+}
+
+// Solver-coupling convergence: the wall equation at the previous iterate, for the new pressure,
+// below residual_atol. The equation is linear, so a repeated pressure leaves a residual of
+// round-off and another pressure one of (its change) / (the diagonal) in metres.
+TEST(TubeStructure, ReportsConvergenceWhenThePreviousIterateSolvesTheNewPressure) {
+  TubeStructureParameters parameters = testing::reference_structure(100);
+  EXPECT_THROW(TubeStructure(parameters, 1e-4).start_reporting_convergence(), std::runtime_error);
+  parameters.residual_atol = 1e-12;
+  TubeStructure structure(parameters, 1e-4);
+  structure.start_reporting_convergence();
+  structure.initialize_step();
+  const Eigen::VectorXd pressure = Eigen::VectorXd::Constant(100, kPressure);
+  structure.solve(pressure);
+  EXPECT_FALSE(structure.converged_at_first_iteration());  // from the wall at rest
+  structure.solve(pressure);
+  EXPECT_TRUE(structure.converged_at_first_iteration());
+  structure.solve(pressure * (1.0 + 1e-3));
+  EXPECT_FALSE(structure.converged_at_first_iteration());
 }
 
 TEST(TubeStructure, BackwardEulerSettlesOnTheStaticDeflection) {
