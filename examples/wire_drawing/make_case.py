@@ -10,7 +10,8 @@ Swift hardening, NLGEOM, quasi-static: pulled at the drawing speed at its exit e
 force on its entry end). --refine doubles the cells and elements in each direction; --set
 changes one parameter, e.g. --set die.reduction=0 (the die held for the whole run) or
 --set lubricant.viscosity=122.5. With --set coupling.type=iqnism it also writes DIR/surrogate,
-the same film and wire on the coarser meshes of the `surrogate` parameters (IQN-ILSM).
+the same film and wire on the coarser meshes of the `surrogate` parameters (IQN-ILSM);
+--set coupling.type=ibqn couples by IBQN, with a model of each solver's Jacobian.
 """
 import copy
 import argparse
@@ -298,13 +299,21 @@ def wire_deck(p, refine):
 def case_file(p):
     """The coupled case: the film (openfoam) and the wire (calculix behind a mapped wrapper)."""
     time, coupling = p["time"], p["coupling"]
-    if coupling["type"] not in ("iqni", "iqnism"):
-        sys.exit(f"make_case.py: coupling.type: '{coupling['type']}' is not iqni or iqnism")
-    if coupling["type"] == "iqnism" and (coupling["mixing"] != 1.0 or coupling["model"] != "ls"):
-        sys.exit("make_case.py: coupling.type iqnism takes model ls and mixing 1")
-    mixing = ("" if coupling["type"] == "iqnism" else
+    if coupling["type"] not in ("iqni", "iqnism", "ibqn"):
+        sys.exit(f"make_case.py: coupling.type: '{coupling['type']}' is not iqni, iqnism or ibqn")
+    if coupling["type"] != "iqni" and (coupling["mixing"] != 1.0 or coupling["model"] != "ls"):
+        sys.exit(f"make_case.py: coupling.type {coupling['type']} takes model ls and mixing 1")
+    mixing = ("" if coupling["type"] != "iqni" else
               f"  mixing: {coupling['mixing']:g}                      "
               "# 1: IQN-ILS; < 1: the unexplained residual relaxed (ls only)\n")
+    model = f"""    type: {coupling['model']}                      # ls: IQN-ILS (the paper's); mvmf: IQN-MVJ
+    q: {coupling['reuse_steps']}                         # earlier steps whose secant information is reused
+    min_significant: {coupling['min_significant']:g}       # filter of nearly dependent secant columns:
+    min_significant_relative: {coupling['min_significant_relative']:g}      #   absolute and relative thresholds
+"""
+    # ibqn: a model of the film's Jacobian (model_f) and one of the wire's (model_s).
+    models = (f"  model_f:\n{model}  model_s:\n{model}" if coupling["type"] == "ibqn" else
+              f"{mixing}  model:\n{model}")
     return f"""# The dry wire drawing case (docs/wire-drawing.md), written by make_case.py.
 #   cocopp run case.yaml
 settings:
@@ -313,12 +322,7 @@ settings:
 coupled_solver:
   type: {coupling['type']}                      # interface quasi-Newton, as the paper
   omega: {coupling['omega']:g}                     # relaxation of a step's first update
-{mixing}  model:
-    type: {coupling['model']}                      # ls: IQN-ILS (the paper's); mvmf: IQN-MVJ
-    q: {coupling['reuse_steps']}                         # earlier steps whose secant information is reused
-    min_significant: {coupling['min_significant']:g}       # filter of nearly dependent secant columns:
-    min_significant_relative: {coupling['min_significant_relative']:g}      #   absolute and relative thresholds
-{surrogate_block(p) if coupling['type'] == 'iqnism' else ''}  predictor:
+{models}{surrogate_block(p) if coupling['type'] == 'iqnism' else ''}  predictor:
     type: linear
   convergence_criterion:
     type: or

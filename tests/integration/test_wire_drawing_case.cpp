@@ -100,44 +100,48 @@ namespace {
 
 // coupling.type iqnism (IQN-ILSM): make_case.py also writes the surrogate, the same case on the
 // coarser meshes of `surrogate` (here 2 x 25 film cells, 2 x 77 wire elements), solved first in
-// every step; two steps of the case run with it, the surrogate's iterations are recorded, and
-// the result is the one IQN-ILS reaches without it (both to the paper's 0.01 um).
-TEST(WireDrawingCase, IqnIlsmWithTheCoarseCaseAsSurrogate) {
+// every step; coupling.type ibqn: IBQN with a model of each solver. Two steps of the case run
+// with each, the surrogate's iterations are recorded, and the result is the one IQN-ILS reaches
+// without them (all to the paper's 0.01 um).
+TEST(WireDrawingCase, IqnIlsmAndIbqnReachIqnIlssSolution) {
   const std::string coarse =
       "--set mesh.wire_radial_elements=4 --set mesh.wire_axial_elements=153"
       " --set mesh.film_axial_cells=50 --set mesh.film_radial_cells=3"
       " --set surrogate.film_axial_cells=25 --set surrogate.film_radial_cells=2"
       " --set surrogate.wire_radial_elements=2 --set surrogate.wire_axial_elements=77"
       " --set time.held_steps=2";
-  std::vector<double> solutions[2];
-  int index = 0;
-  for (const char* type : {"iqnism", "iqni"}) {
+  const char* types[] = {"iqnism", "ibqn", "iqni"};
+  std::vector<double> solutions[3];
+  for (int index = 0; index < 3; ++index) {
+    const std::string type = types[index];
     testing::TemporaryDirectory directory;
-    testing::write_wire_drawing_case(directory.path(),
-                                     coarse + " --set coupling.type=" + std::string(type));
+    testing::write_wire_drawing_case(directory.path(), coarse + " --set coupling.type=" + type);
     testing::edit(directory / "case.yaml", "number_of_timesteps: 80", "number_of_timesteps: 2");
     const testing::CommandResult run =
         testing::run_cocopp("run -q " + (directory / "case.yaml").string());
-    ASSERT_EQ(run.exit_code, 0) << run.output;
+    ASSERT_EQ(run.exit_code, 0) << type << "\n" << run.output;
+    EXPECT_NE(run.output.find("coupled solver : " + type), std::string::npos) << run.output;
     const auto summary = testing::read_json(directory / "results/case.summary.json");
-    EXPECT_TRUE(summary["unconverged_steps"].empty()) << summary["unconverged_steps"];
-    if (std::string(type) == "iqnism") {
+    EXPECT_TRUE(summary["unconverged_steps"].empty()) << type << summary["unconverged_steps"];
+    if (type == "iqnism") {
       ASSERT_EQ(summary["surrogate_iterations_per_step"].size(), 2u);
       for (const auto& iterations : summary["surrogate_iterations_per_step"])
         EXPECT_GE(iterations.get<int>(), 1);
     }
-    solutions[index++] =
+    solutions[index] =
         testing::read_dataset(directory / "results/case.h5", "x/wire_points/displacement");
   }
-  ASSERT_EQ(solutions[0].size(), solutions[1].size());
-  double largest = 0.0, difference = 0.0;
-  for (std::size_t i = 0; i < solutions[0].size(); ++i) {
-    largest = std::max(largest, std::abs(solutions[1][i]));
-    difference = std::max(difference, std::abs(solutions[0][i] - solutions[1][i]));
+  for (int index = 0; index < 2; ++index) {
+    ASSERT_EQ(solutions[index].size(), solutions[2].size());
+    double largest = 0.0, difference = 0.0;
+    for (std::size_t i = 0; i < solutions[2].size(); ++i) {
+      largest = std::max(largest, std::abs(solutions[2][i]));
+      difference = std::max(difference, std::abs(solutions[index][i] - solutions[2][i]));
+    }
+    std::printf("%s against IQN-ILS: largest difference %.3g m of %.3g m\n", types[index],
+                difference, largest);
+    EXPECT_LT(difference, 1e-8) << types[index];  // all within 0.01 um (2-norm) of the solution
   }
-  std::printf("IQN-ILSM against IQN-ILS: largest difference %.3g m of %.3g m\n", difference,
-              largest);
-  EXPECT_LT(difference, 1e-8);  // both within 0.01 um (2-norm) of the fixed point
 }
 
 }  // namespace
