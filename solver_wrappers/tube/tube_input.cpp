@@ -1,5 +1,7 @@
 #include "solver_wrappers/tube/tube_input.hpp"
 
+#include <stdexcept>
+
 namespace cocopp::tube {
 
 double TubeGeometry::area() const {
@@ -29,6 +31,20 @@ OutputSettings OutputSettings::read(const Settings& input) {
   settings.directory = output.get<std::string>("directory", settings.directory);
   if (settings.directory.empty()) output.fail("directory", "must not be empty");
   return settings;
+}
+
+double read_residual_atol(const Settings& input) {
+  return input.has("residual_atol") ? input.required_in_range("residual_atol", Range::positive())
+                                    : 0.0;
+}
+
+void require_residual_atol(double residual_atol, const std::string& model,
+                           const std::string& measure) {
+  if (residual_atol <= 0.0)
+    throw std::runtime_error("solver-coupling convergence needs residual_atol in the " + model +
+                             "'s input file: the " + measure +
+                             " (m) below which a solve counts as converged at its first "
+                             "iteration, e.g. residual_atol: 1.0e-12");
 }
 
 }  // namespace cocopp::tube

@@ -38,6 +38,15 @@ struct OutputSettings {
   static OutputSettings read(const Settings& input);
 };
 
+/// `residual_atol` of a wall model's input file (m, > 0), which only solver-coupling
+/// convergence reads: below it a solve counts as converged at its first iteration. 0 when the
+/// file does not give it.
+double read_residual_atol(const Settings& input);
+/// Throws std::runtime_error naming `model`'s input file and what the tolerance bounds
+/// (`measure`, e.g. "residual of the wall equation") unless residual_atol was given.
+void require_residual_atol(double residual_atol, const std::string& model,
+                           const std::string& measure);
+
 /// Read a solver's input file with `Parameters::read`; keys nobody read are errors.
 template <class Parameters>
 Parameters load_input_file(const std::string& file) {

@@ -20,8 +20,7 @@ TubeRingmodelParameters TubeRingmodelParameters::read(const Settings& input) {
   parameters.e = input.required_in_range("e", Range::positive());
   parameters.h = input.required_in_range("h", Range::positive());
   parameters.p_ref = input.get<double>("p_ref", 0.0);
-  if (input.has("residual_atol"))
-    parameters.residual_atol = input.required_in_range("residual_atol", Range::positive());
+  parameters.residual_atol = read_residual_atol(input);
   parameters.output = OutputSettings::read(input);
   return parameters;
 }
@@ -80,11 +79,7 @@ Eigen::VectorXd TubeRingmodel::solve(const Eigen::VectorXd& pressure) {
 }
 
 void TubeRingmodel::start_reporting_convergence() const {
-  if (parameters_.residual_atol <= 0.0)
-    throw std::runtime_error(
-        "solver-coupling convergence needs residual_atol in the tube ring model's input file: "
-        "the change of the displacement (m) below which a solve counts as converged, e.g. "
-        "residual_atol: 1.0e-12");
+  require_residual_atol(parameters_.residual_atol, "tube ring model", "change of the displacement");
 }
 
 RestartData TubeRingmodel::restart_data() const {

@@ -45,8 +45,7 @@ TubeStructureParameters TubeStructureParameters::read(const Settings& input) {
   parameters.h = input.required_in_range("h", Range::positive());
   parameters.nu = input.required_in_range("nu", Range{0.0, 0.5, false, true});
   parameters.p_ref = input.get<double>("p_ref", 0.0);
-  if (input.has("residual_atol"))
-    parameters.residual_atol = input.required_in_range("residual_atol", Range::positive());
+  parameters.residual_atol = read_residual_atol(input);
   read_time_scheme(input, parameters);
   parameters.output = OutputSettings::read(input);
   return parameters;
@@ -147,11 +146,8 @@ Eigen::VectorXd TubeStructure::solve(const Eigen::VectorXd& pressure) {
 }
 
 void TubeStructure::start_reporting_convergence() const {
-  if (parameters_.residual_atol <= 0.0)
-    throw std::runtime_error(
-        "solver-coupling convergence needs residual_atol in the tube structure's input file: "
-        "the residual of the wall equation (m) below which the previous iterate counts as "
-        "converged, e.g. residual_atol: 1.0e-12");
+  require_residual_atol(parameters_.residual_atol, "tube structure",
+                        "residual of the wall equation");
 }
 
 void TubeStructure::finalize_step() {

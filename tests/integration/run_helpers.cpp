@@ -86,4 +86,12 @@ double relative_difference(const std::vector<double>& a, const std::vector<doubl
   return std::sqrt(difference / norm);
 }
 
+void use_solver_coupling_convergence(const std::filesystem::path& case_file) {
+  edit(case_file, "      - type: relative_norm\n        tolerance: 1.0e-6\n",
+       "      - type: and\n"
+       "        criteria:\n"
+       "          - {type: solver_coupling_convergence, solver_index: 0}\n"
+       "          - {type: solver_coupling_convergence, solver_index: 1}\n");
+}
+
 }  // namespace cocopp::testing

@@ -26,6 +26,9 @@ nlohmann::json read_json(const std::filesystem::path& file);
 std::vector<double> read_dataset(const std::filesystem::path& file, const std::string& name);
 /// ||a - b|| / ||a||: how far a run's dataset (read_dataset) is from a reference run's.
 double relative_difference(const std::vector<double>& a, const std::vector<double>& b);
+/// Make an example's case stop its steps on both solvers' reports (solver_coupling_convergence
+/// of solver 0 and 1) instead of its relative_norm 1e-6.
+void use_solver_coupling_convergence(const std::filesystem::path& case_file);
 /// Replace the first occurrence of `from` in a file (a failed test if it is not there).
 void edit(const std::filesystem::path& file, const std::string& from, const std::string& to);
 

@@ -125,11 +125,7 @@ TEST(CocoppRun, SolverCouplingConvergenceEndsAStepWhenBothTubeSolversAreConverge
   ASSERT_EQ(run_cocopp("run -q " + (reference / "case.yaml").string()).exit_code, 0);
 
   const fs::path dir = copy_example("tube/flow_structure", "fs_scc");
-  edit(dir / "case.yaml", "      - type: relative_norm\n        tolerance: 1.0e-6\n",
-       "      - type: and\n"
-       "        criteria:\n"
-       "          - {type: solver_coupling_convergence, solver_index: 0}\n"
-       "          - {type: solver_coupling_convergence, solver_index: 1}\n");
+  use_solver_coupling_convergence(dir / "case.yaml");
   edit(dir / "flow" / "tube_flow.yaml", "newtontol: 1.0e-14", "newtontol: 1.0e-6");
   // Without residual_atol the wall cannot judge itself: the run stops at once, saying so.
   CommandResult run = run_cocopp("run -q " + (dir / "case.yaml").string());

@@ -135,11 +135,7 @@ TEST(OpenFoamWedgeExample, SolverCouplingConvergenceEndsTheStepsOnTheSolversRepo
   const fs::path plain = prepared_example("openfoam_wedge_residual", "case.yaml");
   ASSERT_EQ(run_cocopp("run --quiet " + (plain / "case.yaml").string()).exit_code, 0);
   const fs::path dir = prepared_example("openfoam_wedge_solvers", "case.yaml");
-  edit(dir / "case.yaml", "      - type: relative_norm\n        tolerance: 1.0e-6\n",
-       "      - type: and\n"
-       "        criteria:\n"
-       "          - {type: solver_coupling_convergence, solver_index: 0}\n"
-       "          - {type: solver_coupling_convergence, solver_index: 1}\n");
+  testing::use_solver_coupling_convergence(dir / "case.yaml");
   const std::string fv_solution = read_text(dir / "fluid" / "system" / "fvSolution");
   const std::string controls = fv_solution.substr(fv_solution.find("    residualControl"));
   edit(dir / "fluid" / "system" / "fvSolution", controls, "}\n");
