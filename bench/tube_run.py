@@ -8,6 +8,10 @@ not spent waiting for a solver: the coupling algorithm, predictor, convergence c
 copies; results I/O and start-up excluded) next to the total coupler time per iteration.
 
     /usr/bin/python3 bench/tube_run.py [--build build] [--repeat 10] [--case case.yaml]
+        [--example examples/tube/flow_ringmodel] [--coupled-solver "{type: ibqn, ...}"]
+
+--coupled-solver replaces the case's coupled solver (YAML, its predictor and convergence
+criterion kept unless given), so that every coupled solver is timed on the same case.
 """
 import argparse
 import json
@@ -18,13 +22,27 @@ import tempfile
 import time
 from pathlib import Path
 
+import yaml
+
 ROOT = Path(__file__).resolve().parent.parent
 
 
-def run_once(cocopp, example, case):
+def replace_coupled_solver(case_file, coupled_solver):
+    """The case with its coupled solver replaced, keeping predictor and criterion if not given."""
+    case = yaml.safe_load(case_file.read_text())
+    replacement = yaml.safe_load(coupled_solver)
+    for kept in ("predictor", "convergence_criterion"):
+        replacement.setdefault(kept, case["coupled_solver"][kept])
+    case["coupled_solver"] = replacement
+    case_file.write_text(yaml.safe_dump(case, sort_keys=False))
+
+
+def run_once(cocopp, example, case, coupled_solver):
     with tempfile.TemporaryDirectory(prefix="cocopp_bench_") as tmp:
         work = Path(tmp) / "case"
         shutil.copytree(example, work, ignore=shutil.ignore_patterns("results", "*.log", "output"))
+        if coupled_solver:
+            replace_coupled_solver(work / case, coupled_solver)
         start = time.perf_counter()
         subprocess.run([str(cocopp), "run", "-q", str(work / case)], check=True,
                        stdout=subprocess.DEVNULL)
@@ -40,20 +58,22 @@ def main():
     parser.add_argument("--repeat", type=int, default=10, help="number of runs")
     parser.add_argument("--example", default=str(ROOT / "examples/tube/flow_structure"))
     parser.add_argument("--case", default="case.yaml", help="case file inside the example")
+    parser.add_argument("--coupled-solver", help="the coupled solver to use instead (YAML)")
     args = parser.parse_args()
 
     cocopp = Path(args.build) / "bin" / "cocopp"
-    run_once(cocopp, args.example, args.case)  # warm the file cache
+    run_once(cocopp, args.example, args.case, args.coupled_solver)  # warm the file cache
     walls, step_coupler, coupler, iterations = [], [], [], None
     for _ in range(args.repeat):
-        wall, summary = run_once(cocopp, args.example, args.case)
+        wall, summary = run_once(cocopp, args.example, args.case, args.coupled_solver)
         walls.append(wall)
         step_coupler.append(summary["step_coupler_time_per_iteration"])
         coupler.append(summary["coupler_time_per_iteration"])
         iterations = sum(summary["iterations_per_step"])
         solver_times = summary["solver_times"]
 
-    print(f"case: {args.example}/{args.case}, {args.repeat} runs, "
+    solver = f", coupled solver {args.coupled_solver}" if args.coupled_solver else ""
+    print(f"case: {args.example}/{args.case}{solver}, {args.repeat} runs, "
           f"{iterations} coupling iterations per run")
     print(f"whole process wall time    : median {statistics.median(walls) * 1e3:8.1f} ms  "
           f"(min {min(walls) * 1e3:.1f}, max {max(walls) * 1e3:.1f})")

@@ -11,16 +11,27 @@
 //     (I - F'S') dy = (y~ - y) + F' (x~ - x),   y <- y + dy,  then x~ = S(y).
 // The second solve (second_solver_input) uses the x just updated and the x~ of the previous
 // iteration, so S gets loads that already account for the displacement update, not F(x)
-// itself. Both are solved matrix-free with GMRES: the operators are I minus a product of
-// low-rank models, so GMRES needs at most rank + 1 iterations.
+// itself.
+//
+// Solving the blocks. With two `ls` models each Jacobian is of low rank: F' = W_f R_f⁻¹ Q_fᵀ D_x
+// (V_f = Q_f R_f, inputs weighted by D_x as fitted) and the same for S'. So a block operator
+// is the identity minus a low-rank product, which the Sherman-Morrison-Woodbury identity
+// inverts in the small space of the columns (solve_block). What that needs of the interface,
+// Q_sᵀ D_y W_f and Q_fᵀ D_x W_s, is kept up to date column by column (CrossProjection), so an
+// iteration costs O(n k) where GMRES, with one pass over both models per Krylov iteration and
+// about k of those, costs O(n k²). Any other model, and a singular block, is solved
+// matrix-free with GMRES (at most rank + 1 iterations).
 //
 // Until both models hold secant information (the first iterations of a run, or of every step
 // without reuse), x <- x + omega r and S gets y~ = F(x), as in iqni; so does the first
 // iteration of every step, whose x comes from the predictor.
 #include <fmt/format.h>
 
+#include <Eigen/LU>
+
 #include "coupler/coupled_solvers/coupled_solver.hpp"
 #include "coupler/coupled_solvers/gmres.hpp"
+#include "coupler/coupled_solvers/models/cross_projection.hpp"
 #include "coupler/coupled_solvers/models/model.hpp"
 #include "coupler/coupled_solvers/scaling.hpp"
 
@@ -70,8 +81,7 @@ class Ibqn : public CoupledSolver {
     if (first_iteration_ || !both_have_information())
       y_ = yt;
     else
-      y_ = y_previous_ +
-           solve_block(&Ibqn::identity_minus_fs, (yt - y_previous_) + predict_f(xt_previous_ - x));
+      y_ = y_previous_ + solve_y_block((yt - y_previous_) + predict_f(xt_previous_ - x));
     return y_;
   }
 
@@ -88,7 +98,7 @@ class Ibqn : public CoupledSolver {
     xt_previous_ = xt;
     // Filtering may leave a model without columns: then relax as in the first iteration.
     if (!both_have_information()) return x + omega_ * r;
-    return x + solve_block(&Ibqn::identity_minus_sf, r + predict_s(yt_ - y_));
+    return x + solve_x_block(r + predict_s(yt_ - y_));
   }
 
   std::vector<std::string> take_notes() override {
@@ -134,10 +144,56 @@ class Ibqn : public CoupledSolver {
     return dy - predict_f(predict_s(dy));
   }
 
-  /// The solution of operator(d) = b. A GMRES that stops at maximum_iterations still returns
-  /// the best d of its Krylov space; the coupling iteration corrects what remains.
+  /// dx with (I - S'F') dx = b, and dy with (I - F'S') dy = b.
+  Eigen::VectorXd solve_x_block(const Eigen::VectorXd& b) {
+    return solve_block({s_, kY, sf_}, {f_, kX, fs_}, &Ibqn::identity_minus_sf, b);
+  }
+  Eigen::VectorXd solve_y_block(const Eigen::VectorXd& b) {
+    return solve_block({f_, kX, fs_}, {s_, kY, sf_}, &Ibqn::identity_minus_fs, b);
+  }
+
+  /// One factor of a block's product: a model, the interface its inputs are weighted as, and
+  /// the kept coefficients its fit gives to the other model's output columns.
+  struct Factor {
+    const NamedModel& model;
+    std::size_t input;
+    CrossProjection& onto_other;
+  };
+
+  /// d with (I - O' I') d = b for the `outer` model applied after the `inner` one: exactly by
+  /// Woodbury when both are least-squares fits, otherwise (or if the small system is singular)
+  /// by GMRES on `block`.
   using BlockOperator = Eigen::VectorXd (Ibqn::*)(const Eigen::VectorXd&);
-  Eigen::VectorXd solve_block(BlockOperator block, const Eigen::VectorXd& b) {
+  Eigen::VectorXd solve_block(Factor outer, Factor inner, BlockOperator block,
+                              const Eigen::VectorXd& b) {
+    const SecantColumns* o = outer.model.model->least_squares_columns();
+    const SecantColumns* i = inner.model.model->least_squares_columns();
+    if (o != nullptr && i != nullptr) {
+      // In the orthonormal bases of the two fits (V = Q R): with G = Q_oᵀ D_o W_i R_i⁻¹ and
+      // H = Q_iᵀ D_i W_o R_o⁻¹, (I - O'I')⁻¹ b = b + W_o R_o⁻¹ (I - G H)⁻¹ G Q_iᵀ D_i b.
+      // I - G H is the block operator itself on the span of Q_o, so its conditioning is the
+      // operator's, not that of the secant columns.
+      const auto times_r_inverse = [](Eigen::MatrixXd m, const SecantColumns& of) {
+        of.qr().r().triangularView<Eigen::Upper>().solveInPlace<Eigen::OnTheRight>(m);
+        return m;
+      };
+      const Eigen::MatrixXd g =
+          times_r_inverse(outer.onto_other.compute(*o, scaling_.weights(outer.input), *i), *i);
+      const Eigen::MatrixXd h =
+          times_r_inverse(inner.onto_other.compute(*i, scaling_.weights(inner.input), *o), *o);
+      const Eigen::FullPivLU<Eigen::MatrixXd> small(Eigen::MatrixXd::Identity(g.rows(), g.rows()) -
+                                                    g * h);
+      // A singular block (reused columns that describe another state can make S'F' have an
+      // eigenvalue 1 on their span) goes to GMRES, whose minimal residual copes with it; a
+      // minimum-norm solution of the small system instead stalled or diverged on the tube.
+      if (small.isInvertible()) {
+        const Eigen::VectorXd z = o->qr().r().triangularView<Eigen::Upper>().solve(
+            small.solve(g * i->qr().project(scaling_.apply(inner.input, b))));
+        if (z.allFinite()) return b + o->combine_w(z);
+      }
+    }
+    // A GMRES that stops at maximum_iterations still returns the best d of its Krylov space;
+    // the coupling iteration corrects what remains.
     auto apply = [this, block](const Eigen::VectorXd& d) { return (this->*block)(d); };
     return gmres(apply, b, tolerance_, maximum_iterations_).x;
   }
@@ -148,6 +204,8 @@ class Ibqn : public CoupledSolver {
   NamedModel f_;
   NamedModel s_;
   VariableScaling scaling_;  ///< weights of the models' inputs: x (kX) and y (kY)
+  CrossProjection sf_;       ///< C_s W_f = R_s⁻¹ Q_sᵀ D_y W_f, kept column by column
+  CrossProjection fs_;       ///< C_f W_s = R_f⁻¹ Q_fᵀ D_x W_s
   static constexpr std::size_t kX = 0, kY = 1;
 
   bool first_iteration_ = true;  ///< of the step: S gets y~ = F(x)

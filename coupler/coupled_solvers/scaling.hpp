@@ -41,6 +41,12 @@ class VariableScaling {
   /// The unweighted values of weighted ones (after apply() has fixed the weights they used).
   Eigen::VectorXd remove(std::size_t index, const Eigen::VectorXd& weighted) const;
 
+  /// The weight of every value of interface `index` as fixed so far: apply() is
+  /// values.cwiseProduct(weights(index)). Empty when scaling is off.
+  Eigen::VectorXd weights(std::size_t index) const {
+    return enabled() ? layouts_.at(index).weights : Eigen::VectorXd();
+  }
+
   bool enabled() const { return automatic_ || !fixed_.empty(); }
   /// "automatic" or "pressure 1e-05, traction 1"; "" when off.
   std::string describe() const;

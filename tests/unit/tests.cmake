@@ -54,7 +54,8 @@ cocopp_unit_test(coupler/coupled_solvers
   SOURCES test_coupled_solvers.cpp test_ibqn.cpp test_iqnism.cpp test_scaling.cpp test_state.cpp
   LIBS cocopp_coupling)
 cocopp_unit_test(coupler/coupled_solvers/models
-  SOURCES test_ls.cpp test_multi_vector.cpp test_qr_factorization.cpp LIBS cocopp_coupling)
+  SOURCES test_cross_projection.cpp test_ls.cpp test_multi_vector.cpp test_qr_factorization.cpp
+  LIBS cocopp_coupling)
 cocopp_unit_test(coupler/convergence SOURCES test_convergence.cpp LIBS cocopp_coupling)
 cocopp_unit_test(coupler/predictors SOURCES test_predictors.cpp LIBS cocopp_coupling)
 # The HDF5 results file (read back with the C API and with h5py), the JSON run summary and the

@@ -39,6 +39,8 @@ class LeastSquares : public Model {
     return columns_.combine_v(columns_.coefficients(dr));
   }
 
+  const SecantColumns* least_squares_columns() const override { return &columns_; }
+
   void finalize_step() override { columns_.age_and_drop(reused_steps_); }
 
   int columns() const override { return columns_.size(); }

@@ -10,6 +10,8 @@
 
 namespace cocopp {
 
+class SecantColumns;
+
 class Model {
  public:
   static constexpr const char* kind = "model";
@@ -30,6 +32,10 @@ class Model {
   virtual Eigen::VectorXd fitted(const Eigen::VectorXd& dr) {
     return Eigen::VectorXd::Zero(dr.size());
   }
+  /// The secant columns of a model whose predict() is W c with c = argmin ||V c - dr|| (`ls`),
+  /// so that a product of two such models can be formed in the small space of their columns
+  /// (ibqn); nullptr for any other model.
+  virtual const SecantColumns* least_squares_columns() const { return nullptr; }
   /// Called when the time step converged: keep this step's information for reuse.
   virtual void finalize_step() = 0;
   /// Number of secant columns currently in use (for reports and tests).

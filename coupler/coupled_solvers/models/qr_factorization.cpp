@@ -22,6 +22,8 @@ constexpr int kMaxPasses = 3;
 }  // namespace
 
 void QrFactorization::clear() {
+  ++version_;
+  ++basis_generation_;
   basis_size_ = 0;
   u_.resize(0, 0);
   r_.resize(0, 0);
@@ -35,6 +37,7 @@ void QrFactorization::save_state(State& state) const {
 }
 
 void QrFactorization::load_state(const State& state, Eigen::Index rows, Eigen::Index columns) {
+  ++version_;
   const Eigen::MatrixXd& basis = state.matrix("basis");
   const Eigen::MatrixXd& u = state.matrix("u");
   const Eigen::MatrixXd& r = state.matrix("r");
@@ -45,6 +48,7 @@ void QrFactorization::load_state(const State& state, Eigen::Index rows, Eigen::I
     throw std::runtime_error("the saved QR factorization in '" + state.path() +
                              "' does not fit the saved secant columns (" + std::to_string(rows) +
                              " x " + std::to_string(columns) + ")");
+  ++basis_generation_;
   basis_.resize(rows, capacity);
   basis_.leftCols(m) = basis;
   basis_size_ = m;
@@ -53,9 +57,11 @@ void QrFactorization::load_state(const State& state, Eigen::Index rows, Eigen::I
 }
 
 void QrFactorization::append_basis_vector(const Eigen::VectorXd& b) {
+  ++version_;
   if (basis_.rows() != b.size()) {  // first vector, or vectors of another length after clear()
     basis_.resize(b.size(), 0);
     basis_size_ = 0;
+    ++basis_generation_;
   }
   if (basis_size_ == basis_.cols())
     basis_.conservativeResize(Eigen::NoChange, std::max<Eigen::Index>(8, 2 * basis_size_));
@@ -103,6 +109,7 @@ bool QrFactorization::split(const Eigen::VectorXd& v, Split& result) {
 bool QrFactorization::append(const Eigen::VectorXd& v) {
   Split s;
   if (!split(v, s)) return false;
+  ++version_;
   const Eigen::Index k = columns();
   u_.conservativeResize(Eigen::NoChange, k + 1);
   u_.col(k) = s.q_new;
@@ -116,6 +123,7 @@ bool QrFactorization::append(const Eigen::VectorXd& v) {
 bool QrFactorization::insert_front(const Eigen::VectorXd& v) {
   Split s;
   if (!split(v, s)) return false;
+  ++version_;
   const Eigen::Index k = columns();
   // [v V] = [Q q] [on_q R; rho 0]: triangularise the first column from the bottom up.
   Eigen::MatrixXd r = Eigen::MatrixXd::Zero(k + 1, k + 1);
@@ -136,6 +144,7 @@ bool QrFactorization::insert_front(const Eigen::VectorXd& v) {
 }
 
 void QrFactorization::rotate(Eigen::Index i, double c, double s, Eigen::Index from) {
+  ++version_;
   const Eigen::Index k = r_.cols();
   for (Eigen::Index j = from; j < k; ++j) {
     const double upper = r_(i, j), lower = r_(i + 1, j);
@@ -148,6 +157,7 @@ void QrFactorization::rotate(Eigen::Index i, double c, double s, Eigen::Index fr
 }
 
 void QrFactorization::remove(Eigen::Index j) {
+  ++version_;
   const Eigen::Index k = columns();
   // Delete column j of R: the columns after it become upper Hessenberg; rotate it back.
   Eigen::MatrixXd r(k, k - 1);
@@ -167,6 +177,7 @@ void QrFactorization::remove(Eigen::Index j) {
 }
 
 void QrFactorization::remove_last() {
+  ++version_;
   const Eigen::Index k = columns();
   r_.conservativeResize(k - 1, k - 1);
   u_.conservativeResize(Eigen::NoChange, k - 1);
@@ -182,6 +193,8 @@ void QrFactorization::compact_if_wasteful() {
   // projection down by a quarter.
   if (dead <= std::max<Eigen::Index>(8, k / 4)) return;
   const Eigen::MatrixXd q = basis() * u_;
+  ++basis_generation_;
+  ++version_;
   basis_.leftCols(k) = q;
   basis_size_ = k;
   u_ = Eigen::MatrixXd::Identity(k, k);

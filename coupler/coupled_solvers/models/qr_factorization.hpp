@@ -11,6 +11,7 @@
 // only when such dead directions make up a sizeable part of it.
 #include <Eigen/Core>
 #include <cmath>
+#include <cstdint>
 
 #include "coupler/results/state.hpp"
 
@@ -33,6 +34,16 @@ class QrFactorization {
 
   /// |R_jj|: the part of column j not in the span of the columns before it.
   double diagonal(Eigen::Index j) const { return std::abs(r_(j, j)); }
+  /// The factors, Q = basis() u() and V = Q r(), for products formed outside (CrossProjection).
+  Eigen::Ref<const Eigen::MatrixXd> basis() const { return basis_.leftCols(basis_size_); }
+  const Eigen::MatrixXd& u() const { return u_; }
+  const Eigen::MatrixXd& r() const { return r_; }
+  /// Changes whenever vectors already in basis() change (rebuild, clear, load); appending a
+  /// vector keeps it, so that products with the basis can be extended rather than redone.
+  std::uint64_t basis_generation() const { return basis_generation_; }
+  /// Changes with every change of the factorization.
+  std::uint64_t version() const { return version_; }
+
   /// c = argmin ||V c - b||.
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
   /// Q^T b (k values).
@@ -61,12 +72,13 @@ class QrFactorization {
   /// Apply the rotation [c s; -s c] to columns i and i + 1 of Q, i.e. of U (and to rows i,
   /// i + 1 of R from column `from` on), so that V = Q R stays true.
   void rotate(Eigen::Index i, double c, double s, Eigen::Index from);
-  Eigen::Ref<const Eigen::MatrixXd> basis() const { return basis_.leftCols(basis_size_); }
 
   Eigen::MatrixXd basis_;        ///< B in its first basis_size_ columns; spare capacity after
   Eigen::Index basis_size_ = 0;  ///< m
   Eigen::MatrixXd u_;            ///< m x k, orthonormal columns: Q = B U
   Eigen::MatrixXd r_;            ///< k x k, upper triangular
+  std::uint64_t basis_generation_ = 0;
+  std::uint64_t version_ = 0;
 };
 
 }  // namespace cocopp

@@ -23,13 +23,14 @@ void SecantColumns::insert(Eigen::VectorXd v, Eigen::VectorXd w) {
     notes_.push_back("a repeated residual (zero residual difference) gave no secant column");
     return;
   }
-  columns_.push_front({std::move(v), std::move(w), 0});
+  columns_.push_front({std::move(v), std::move(w), 0, next_id_++});
   norms_.push_front(norm);
   if (!qr_.insert_front(columns_.front().v)) refactorize();
   filter();
 }
 
 void SecantColumns::restore(Column column) {
+  column.id = next_id_++;
   const double norm = column.v.norm();
   columns_.push_back(std::move(column));
   norms_.push_back(norm);

@@ -11,6 +11,7 @@
 // removal changes only the older ones' R_ii) or `smallest` (the one with the smallest R_ii, as
 // CoCoNuT does; then the QR is updated and the scan repeated).
 #include <Eigen/Core>
+#include <cstdint>
 #include <deque>
 #include <string>
 #include <utility>
@@ -36,9 +37,10 @@ struct ColumnFilter {
 class SecantColumns {
  public:
   struct Column {
-    Eigen::VectorXd v;  ///< residual difference
-    Eigen::VectorXd w;  ///< solver output difference
-    int age = 0;        ///< time steps since the column was made (0: current step)
+    Eigen::VectorXd v;     ///< residual difference
+    Eigen::VectorXd w;     ///< solver output difference
+    int age = 0;           ///< time steps since the column was made (0: current step)
+    std::uint64_t id = 0;  ///< unique within these columns (set by insert and restore)
   };
 
   explicit SecantColumns(ColumnFilter filter = {}) : filter_(filter) {}
@@ -56,6 +58,9 @@ class SecantColumns {
 
   /// Degenerate columns dropped since the last call, as readable notes (for warnings).
   std::vector<std::string> take_notes() { return std::exchange(notes_, {}); }
+
+  /// The QR factorization of V (for products of two models: CrossProjection).
+  const QrFactorization& qr() const { return qr_; }
 
   /// c = V^+ y = argmin ||V c - y||.
   Eigen::VectorXd coefficients(const Eigen::VectorXd& y) const { return qr_.solve(y); }
@@ -87,6 +92,7 @@ class SecantColumns {
   std::deque<Column> columns_;  ///< newest first, matching the columns of qr_
   std::deque<double> norms_;    ///< ||v|| of each column
   QrFactorization qr_;
+  std::uint64_t next_id_ = 1;
   std::vector<std::string> notes_;
 };
 

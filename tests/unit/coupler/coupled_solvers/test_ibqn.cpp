@@ -1,6 +1,8 @@
 // ibqn (interface block quasi-Newton) and its GMRES on affine problems with known solutions.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "coupler/coupled_solvers/coupled_solver.hpp"
 #include "coupler/coupled_solvers/gmres.hpp"
 #include "tests/support/linear_solvers.hpp"
@@ -79,8 +81,14 @@ TEST(Ibqn, SolvesAnAffineProblemThatGaussSeidelCannot) {
   EXPECT_LT((x.col(1) - problem.solution).norm(), 1e-8 * problem.solution.norm());
   EXPECT_TRUE(record.converged);
   // After n + 1 evaluations the n secant differences of x span the space, so S'F' is exact
-  // and the next evaluation lands on the solution: at most n + 2 iterations, as IQN-ILS.
-  EXPECT_LE(record.iterations, n + 2);
+  // and the next evaluation lands on the solution, as IQN-ILS: to round-off, which may leave
+  // it a hair above the absolute tolerance (1.07e-10 against 1e-10), so one more may be
+  // needed to confirm it.
+  ASSERT_GE(record.residual_norms.size(), std::size_t(n + 2));
+  const double largest =
+      *std::max_element(record.residual_norms.begin(), record.residual_norms.end());
+  EXPECT_LT(record.residual_norms[n + 1], 1e-11 * largest);
+  EXPECT_LE(record.iterations, n + 3);
 }
 
 // The full block method: once both models have secant information, the structure gets the
@@ -116,17 +124,25 @@ TEST(Ibqn, TheStructureGetsTheBlockUpdateOfTheLoads) {
   const StepRecord record = coupled->solve_step(1, 0.1);
   ASSERT_TRUE(record.converged);
   ASSERT_GE(record.iterations, 4);
+  // The block solves are exact, so x can reach the solution an iteration or two before the
+  // criterion has confirmed it: there F(x) and the block update agree.
+  const Eigen::VectorXd& x_final = flow_log[2 * (record.iterations - 1)];
+  int block_updates = 0;
   for (int k = 0; k < record.iterations; ++k) {
     const Eigen::VectorXd& flow_output = flow_log[2 * k + 1];
     const Eigen::VectorXd& structure_input = structure_log[2 * k];
     const double difference = (structure_input - flow_output).norm() / flow_output.norm();
-    if (k < 2)  // before model_s has a secant pair: Gauss-Seidel
+    const bool x_converged = (flow_log[2 * k] - x_final).norm() < 1e-8 * x_final.norm();
+    if (k < 2) {  // before model_s has a secant pair: Gauss-Seidel
       EXPECT_EQ(difference, 0.0) << "iteration " << k + 1;
-    else if (k < record.iterations - 1)
+    } else if (!x_converged) {
       EXPECT_GT(difference, 1e-6) << "iteration " << k + 1;
-    else
+      ++block_updates;
+    } else {
       EXPECT_LT(difference, 1e-8) << "iteration " << k + 1 << " (converged)";
+    }
   }
+  EXPECT_GE(block_updates, 4);
 }
 
 TEST(Ibqn, DescribesItsModels) {
