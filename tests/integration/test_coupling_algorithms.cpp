@@ -67,7 +67,7 @@ INSTANTIATE_TEST_SUITE_P(Tube, CouplingAlgorithms, ::testing::ValuesIn(kAlgorith
                          [](const auto& info) { return std::string(info.param.name); });
 
 // IQN-ILSM on the same tube (examples/tube/surrogate: its surrogate the tube on 50 cells,
-// mapped linearly, with IQN-MVJ): 3.24 iterations per step against IQN-ILS q 10's 3.79 above.
+// mapped linearly, with IQN-MVJ): 3.33 iterations per step against IQN-ILS q 10's 3.79 above.
 // A regression value like the others; the surrogate's solvers are started and stopped with
 // the run, and their time is reported apart from the coupler's.
 TEST(CouplingAlgorithms, IqnIlsmSavesIterationsOnTheTubeWithACoarseSurrogate) {
@@ -79,6 +79,7 @@ TEST(CouplingAlgorithms, IqnIlsmSavesIterationsOnTheTubeWithACoarseSurrogate) {
   EXPECT_TRUE(summary["unconverged_steps"].empty()) << summary["unconverged_steps"];
   int total = 0;
   for (const auto& iterations : summary["iterations_per_step"]) total += iterations.get<int>();
-  EXPECT_EQ(total, 324);
+  // 324 until mv formed its update with Q instead of V^+ column by column (round-off).
+  EXPECT_EQ(total, 333);
   fs::remove_all(dir);
 }

@@ -30,10 +30,29 @@ class StepColumns : public SecantColumns {
   /// explain, in y (for the previous steps' Jacobian).
   Eigen::VectorXd peel(Eigen::VectorXd& y) const {
     if (empty()) return Eigen::VectorXd::Zero(y.size());
+    if (q_.cols() == size()) {  // frozen: V c = Q p and W c = W R^-1 p, with p = Q^T y
+      const Eigen::VectorXd p = q_.transpose() * y;
+      y.noalias() -= q_ * p;
+      return w_r_inverse_ * p;
+    }
     const Eigen::VectorXd c = coefficients(y);
     y -= combine_v(c);
     return combine_w(c);
   }
+
+  /// For a step that takes no more columns (mvmf's kept steps, each peeled in every
+  /// prediction): Q and W R^-1 as two dense n x k matrices, so that peel() is three
+  /// contiguous products instead of the factorization's solve and two sums over columns.
+  void freeze() {
+    if (empty()) return;
+    q_ = qr().basis() * qr().u();
+    w_r_inverse_ = w_matrix();
+    qr().r().triangularView<Eigen::Upper>().solveInPlace<Eigen::OnTheRight>(w_r_inverse_);
+  }
+
+ private:
+  Eigen::MatrixXd q_;            ///< Q, once frozen
+  Eigen::MatrixXd w_r_inverse_;  ///< W R^-1, once frozen
 };
 
 /// The part shared by `mv` and `mvmf`: the current step's columns and the prediction; the

@@ -21,6 +21,7 @@ class MultiVectorMatrixFree : public MultiVector {
   }
 
   void keep(StepColumns step) override {
+    step.freeze();
     steps_.push_front(std::move(step));
     // Dropping the oldest step sets its J_prev, the start of the recursion, to 0.
     while (steps_.size() > std::size_t(reused_steps_)) steps_.pop_back();
@@ -43,6 +44,7 @@ class MultiVectorMatrixFree : public MultiVector {
     for (int i = 0; i < count; ++i) {
       StepColumns step(filter());
       step.load_state(state.group("step_" + std::to_string(i)));
+      step.freeze();
       steps_.push_back(std::move(step));
     }
   }
