@@ -153,7 +153,7 @@ class Ibqn : public CoupledSolver {
   }
 
   /// One factor of a block's product: a model, the interface its inputs are weighted as, and
-  /// the kept coefficients its fit gives to the other model's output columns.
+  /// the other model's output columns kept projected onto its fit's basis.
   struct Factor {
     const NamedModel& model;
     std::size_t input;
@@ -204,8 +204,8 @@ class Ibqn : public CoupledSolver {
   NamedModel f_;
   NamedModel s_;
   VariableScaling scaling_;  ///< weights of the models' inputs: x (kX) and y (kY)
-  CrossProjection sf_;       ///< C_s W_f = R_s⁻¹ Q_sᵀ D_y W_f, kept column by column
-  CrossProjection fs_;       ///< C_f W_s = R_f⁻¹ Q_fᵀ D_x W_s
+  CrossProjection sf_;       ///< Q_sᵀ D_y W_f, kept column by column
+  CrossProjection fs_;       ///< Q_fᵀ D_x W_s
   static constexpr std::size_t kX = 0, kY = 1;
 
   bool first_iteration_ = true;  ///< of the step: S gets y~ = F(x)
