@@ -25,11 +25,12 @@ Eigen::MatrixXd definition(const SecantColumns& a, const Eigen::VectorXd& weight
 void expect_definition(CrossProjection& projection, const SecantColumns& a,
                        const Eigen::VectorXd& weights, const SecantColumns& b,
                        const std::string& when) {
-  const Eigen::MatrixXd kept =
-      a.qr().r().triangularView<Eigen::Upper>().solve(projection.compute(a, weights, b));
+  const Eigen::MatrixXd projected = projection.compute(a, weights, b);
   const Eigen::MatrixXd expected = definition(a, weights, b);
-  ASSERT_EQ(kept.rows(), expected.rows()) << when;
-  ASSERT_EQ(kept.cols(), expected.cols()) << when;
+  ASSERT_EQ(projected.rows(), expected.rows()) << when;
+  ASSERT_EQ(projected.cols(), expected.cols()) << when;
+  if (expected.size() == 0) return;  // (Eigen's triangular solve reads an empty matrix's data)
+  const Eigen::MatrixXd kept = a.qr().r().triangularView<Eigen::Upper>().solve(projected);
   EXPECT_LE((kept - expected).norm(), 1e-10 * expected.norm()) << when;
 }
 
