@@ -5,8 +5,9 @@
 // few iterations per step; that the film is where Wilson and Walowit's inlet estimate puts it;
 // that the wire is in axial equilibrium with the film's loads (which the overlap mapping hands
 // over whole); that the equivalent stress stays on the yield surface; and that plot.py and
-// checks.py read the run; and that the wire answers small load changes deterministically and
-// smoothly (wire_response.py). The whole 80-step case is not a test (docs/wire-drawing.md). Needs
+// checks.py read the run; that the wire answers small load changes deterministically and
+// smoothly (wire_response.py); and that it takes a step driven by displacement under the film
+// (displacement_probe.py). The whole 80-step case is not a test (docs/wire-drawing.md). Needs
 // OpenFOAM and ccx.
 #include <gtest/gtest.h>
 
@@ -90,6 +91,22 @@ TEST(WireDrawingCase, CoarseShortRunCouplesFilmAndWire) {
   EXPECT_GT(response.at("sensitivity").get<double>(), 0.0);
   ASSERT_EQ(response.at("second_over_first").size(), 3u);
   for (const auto& ratio : response.at("second_over_first")) EXPECT_LT(ratio.get<double>(), 0.05);
+
+  // The wire driven by displacement under the film (displacement_probe.py): ccx takes the next
+  // step with the nodes under the film held at their last radius, and moved inward by 0.55 and
+  // 2 um; the film side's reaction grows with the inward move (the wire resists being squeezed).
+  testing::run_in(directory.path(),
+                  "sh -c '/usr/bin/python3 " +
+                      (testing::kWireDrawingExample / "displacement_probe.py").string() +
+                      " . --squeeze 0 0.55e-6 2e-6 > displacement_probe.txt'");
+  std::printf("%s\n", testing::read_text(directory / "displacement_probe.txt").c_str());
+  const auto probe = testing::read_json(directory / "results/displacement_probe.json");
+  ASSERT_EQ(probe.size(), 3u);
+  for (const auto& squeeze : probe) ASSERT_TRUE(squeeze.at("converged").get<bool>()) << squeeze;
+  const auto reaction = [&](int k) { return -probe[k].at("radial_reaction").get<double>(); };
+  EXPECT_GT(reaction(0), 0.0);
+  EXPECT_GT(reaction(1), reaction(0));
+  EXPECT_GT(reaction(2), reaction(1));
 }
 
 }  // namespace
