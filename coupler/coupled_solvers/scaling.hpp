@@ -43,8 +43,8 @@ class VariableScaling {
 
   /// The weight of every value of interface `index` as fixed so far: apply() is
   /// values.cwiseProduct(weights(index)). Empty when scaling is off.
-  Eigen::VectorXd weights(std::size_t index) const {
-    return enabled() ? layouts_.at(index).weights : Eigen::VectorXd();
+  const Eigen::VectorXd& weights(std::size_t index) const {
+    return enabled() ? layouts_.at(index).weights : no_weights_;
   }
 
   bool enabled() const { return automatic_ || !fixed_.empty(); }
@@ -68,7 +68,8 @@ class VariableScaling {
   std::map<std::string, double> fixed_;    ///< from the case file
   std::map<std::string, double> weights_;  ///< in use: fixed_, plus automatic ones found so far
   std::vector<Layout> layouts_;
-  Settings settings_;  ///< the coupled solver's, for errors found in bind()
+  Eigen::VectorXd no_weights_;  ///< what weights() gives when scaling is off: empty
+  Settings settings_;           ///< the coupled solver's, for errors found in bind()
 };
 
 }  // namespace cocopp

@@ -21,32 +21,12 @@ import json
 import os
 import pathlib
 import re
-import shutil
-import subprocess
 import time
 
-from wire_results import dat_block
+from wire_results import applied_loads, dat_block, deck_elements, restart_ccx
 
 HERE = pathlib.Path(__file__).resolve().parent
 PRESSURE = re.compile(r"^(\d+), P2, (\S+)$")
-
-
-def elements(deck):
-    """Connectivity of the deck's CAX8/CAX8R elements: element -> its 8 nodes."""
-    connectivity, inside = {}, False
-    for line in deck.read_text().splitlines():
-        if line.startswith("*"):
-            inside = line.upper().startswith("*ELEMENT")
-        elif inside and line.strip():
-            values = [int(v) for v in line.split(",")]
-            connectivity[values[0]] = values[1:]
-    return connectivity
-
-
-def loaded_faces(loads):
-    """The elements whose face 2 (the wire's surface) carries a nonzero pressure."""
-    return {int(m.group(1)) for line in loads.splitlines()
-            if (m := PRESSURE.match(line.strip())) and float(m.group(2)) != 0.0}
 
 
 def last_step_displacements(structure):
@@ -84,15 +64,8 @@ def increments(sta):
 def probe(structure, work, text, prescribed, ccx):
     work.mkdir(parents=True, exist_ok=True)
     (work / "cocopp_iteration.inp").write_text(text)
-    for name in ("cocopp_model.inp",):
-        if (structure / name).exists():
-            shutil.copy(structure / name, work / name)
-    shutil.copy(structure / "cocopp_converged.rout", work / "cocopp_iteration.rin")
     start = time.perf_counter()
-    with open(work / "ccx.log", "w") as log:
-        status = subprocess.run([ccx, "-i", "cocopp_iteration"], cwd=work, stdout=log,
-                                stderr=subprocess.STDOUT,
-                                env=dict(os.environ, OMP_NUM_THREADS="2")).returncode
+    status = restart_ccx(structure, work, ccx)
     seconds = time.perf_counter() - start
     forces = dat_block(work / "cocopp_iteration.dat", "forces") if status == 0 else None
     converged = status == 0 and forces is not None
@@ -100,8 +73,8 @@ def probe(structure, work, text, prescribed, ccx):
                                else (0, 0, 0))
     reaction = sum(row[1] for row in forces if int(row[0]) in prescribed) if converged else None
     return {"converged": converged, "increments": count, "cut_back": cut_back,
-            "newton_iterations": newton,
-            "seconds": round(seconds, 2), "radial_reaction": reaction}
+            "newton_iterations": newton, "seconds": round(seconds, 2),
+            "radial_reaction": reaction}
 
 
 def main():
@@ -121,8 +94,9 @@ def main():
     if not pathlib.Path(args.ccx).is_file():
         raise SystemExit(f"displacement_probe.py: no ccx at {args.ccx} "
                          "(scripts/install-calculix.sh builds it; --ccx names another)")
-    connectivity = elements(structure / "wire.inp")
-    under_film = loaded_faces((structure / "cocopp_loads.inp").read_text())
+    connectivity = deck_elements(structure / "wire.inp")
+    pressures, _ = applied_loads(structure / "cocopp_loads.inp")
+    under_film = {element for element, p in pressures.items() if p != 0.0}
     displacement, source = last_step_displacements(structure)
     # Face 2 of a CAX8 element: corner nodes 2 and 3 and the midside node 6.
     nodes = sorted({n for e in under_film for n in (connectivity[e][1], connectivity[e][2],

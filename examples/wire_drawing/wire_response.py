@@ -24,11 +24,10 @@ import json
 import os
 import pathlib
 import shutil
-import subprocess
 
 import numpy as np
 
-from wire_results import dat_block
+from wire_results import dat_block, restart_ccx
 
 HERE = pathlib.Path(__file__).resolve().parent
 
@@ -54,15 +53,10 @@ def radial_displacements(dat_file):
 
 def solve(structure, work, factor, ccx):
     work.mkdir(parents=True, exist_ok=True)
-    for name in ("cocopp_model.inp", "cocopp_iteration.inp"):
-        shutil.copy(structure / name, work / name)
-    shutil.copy(structure / "cocopp_converged.rout", work / "cocopp_iteration.rin")
+    shutil.copy(structure / "cocopp_iteration.inp", work / "cocopp_iteration.inp")
     (work / "cocopp_loads.inp").write_text(
         scaled_loads((structure / "cocopp_loads.inp").read_text(), factor))
-    with open(work / "ccx.log", "w") as log:
-        status = subprocess.run([ccx, "-i", "cocopp_iteration"], cwd=work, stdout=log,
-                                stderr=subprocess.STDOUT,
-                                env=dict(os.environ, OMP_NUM_THREADS="2")).returncode
+    status = restart_ccx(structure, work, ccx)
     if status != 0:
         raise SystemExit(f"wire_response.py: ccx failed ({status}) at load scale {factor}; "
                          f"see {work / 'ccx.log'} (a smaller --scale keeps the loads carriable)")

@@ -1,11 +1,14 @@
-"""A wire drawing run's results, for plot.py and checks.py: the film side from the coupler's
+"""A wire drawing run's results, for plot.py, checks.py and the probes of the wire: the film side from the coupler's
 results file (results/case.h5) and the wire from CalculiX's .frd files (the calculix wrapper
 keeps one per time step in structure/results/step_NNNNN.frd).
 
 ccx writes an axisymmetric model's results on the 2D nodes: x is the radius, y the axis and z
 the hoop direction; stresses are extrapolated from the integration points to the nodes.
 """
+import os
 import pathlib
+import shutil
+import subprocess
 
 import numpy as np
 import yaml
@@ -207,6 +210,19 @@ def deck_elements(deck):
                 ids = [int(v) for v in line.replace(",", " ").split()]
                 elements[ids[0]] = ids[1:]
     return elements
+
+
+def restart_ccx(structure, work, ccx):
+    """Run ccx on work/cocopp_iteration.inp (written by the caller) restarted from the run's last
+    converged step, as the calculix wrapper does (structure/cocopp_converged.rout, with the
+    model deck it includes); the log goes to work/ccx.log. Returns ccx's exit status."""
+    if (structure / "cocopp_model.inp").exists():
+        shutil.copy(structure / "cocopp_model.inp", work / "cocopp_model.inp")
+    shutil.copy(structure / "cocopp_converged.rout", work / "cocopp_iteration.rin")
+    with open(work / "ccx.log", "w") as log:
+        return subprocess.run([ccx, "-i", "cocopp_iteration"], cwd=work, stdout=log,
+                              stderr=subprocess.STDOUT,
+                              env=dict(os.environ, OMP_NUM_THREADS="2")).returncode
 
 
 def applied_loads(loads_file):

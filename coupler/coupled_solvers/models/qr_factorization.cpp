@@ -57,7 +57,6 @@ void QrFactorization::load_state(const State& state, Eigen::Index rows, Eigen::I
 }
 
 void QrFactorization::append_basis_vector(const Eigen::VectorXd& b) {
-  ++version_;
   if (basis_.rows() != b.size()) {  // first vector, or vectors of another length after clear()
     basis_.resize(b.size(), 0);
     basis_size_ = 0;
@@ -144,7 +143,6 @@ bool QrFactorization::insert_front(const Eigen::VectorXd& v) {
 }
 
 void QrFactorization::rotate(Eigen::Index i, double c, double s, Eigen::Index from) {
-  ++version_;
   const Eigen::Index k = r_.cols();
   for (Eigen::Index j = from; j < k; ++j) {
     const double upper = r_(i, j), lower = r_(i + 1, j);

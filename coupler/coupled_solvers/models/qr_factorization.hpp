@@ -41,7 +41,8 @@ class QrFactorization {
   /// Changes whenever vectors already in basis() change (rebuild, clear, load); appending a
   /// vector keeps it, so that products with the basis can be extended rather than redone.
   std::uint64_t basis_generation() const { return basis_generation_; }
-  /// Changes with every change of the factorization.
+  /// Changes with every change of the factorization (each public call that changes it counts
+  /// once; the private steps it is made of do not).
   std::uint64_t version() const { return version_; }
 
   /// c = argmin ||V c - b||.
