@@ -107,6 +107,21 @@ CalculixSolverWrapper::CalculixSolverWrapper(const Settings& settings, const Run
   for (const auto& variable : input_variables_)
     if (variable != "pressure" && variable != "traction")
       settings.fail("input_variables", "'" + variable + "': the loads are pressure and traction");
+  displacement_drive_ =
+      settings.get_choice("interface_drive", "load", {"load", "displacement"}) == "displacement";
+  if (displacement_drive_) {
+    driven_dof_ = settings.get_int_in_range("driven_dof", 1, 1, 3);
+    surface_stiffness_ = settings.required<double>("surface_stiffness");
+    if (!(surface_stiffness_ > 0.0))
+      settings.fail("surface_stiffness",
+                    "give the structure's stiffness per area against a push of its surface, "
+                    "in Pa/m (about its Young's modulus over the faces' length), > 0");
+    if (std::find(input_variables_.begin(), input_variables_.end(), "pressure") ==
+        input_variables_.end())
+      settings.fail("input_variables",
+                    "interface_drive: displacement balances the other solver's pressure: "
+                    "include pressure");
+  }
   threads_ = settings.get_int_in_range("threads", 1, 1, 64);
   timeout_ = settings.get_in_range("timeout", 600.0, Range::timeout());
   save_results_ = settings.get<bool>("save_results", true);
@@ -126,9 +141,10 @@ void CalculixSolverWrapper::set_default_name(const std::string& name) {
 }
 
 std::string CalculixSolverWrapper::describe() const {
-  return fmt::format("{}: {} -i {} for {} (in {}; log {}; {} thread{}; state reset: {})", name_,
+  return fmt::format("{}: {} -i {} for {} (in {}; log {}; {} thread{}; state reset: {}{})", name_,
                      executable_, kJob, input_file_, working_directory_.string(),
-                     log_file_.string(), threads_, threads_ == 1 ? "" : "s", state_reset_key_);
+                     log_file_.string(), threads_, threads_ == 1 ? "" : "s", state_reset_key_,
+                     displacement_drive_ ? "; driven by displacement under the other solver" : "");
 }
 
 void CalculixSolverWrapper::check() const {
@@ -233,6 +249,9 @@ void CalculixSolverWrapper::read_deck() {
                            interface_nodes_.end());
     if (interface_nodes_.empty())
       throw calculix::DeckError("node set " + node_set_name_ + " is empty");
+    if (displacement_drive_)
+      drive_ = std::make_unique<calculix::DisplacementDrive>(*deck_, *loads_, interface_nodes_,
+                                                             driven_dof_, surface_stiffness_);
   } catch (const calculix::DeckError& e) {
     throw CaseError(input_file_where_ + ": solver '" + name_ + "': " + e.what());
   }
@@ -298,7 +317,11 @@ void CalculixSolverWrapper::build_interfaces() {
   for (std::size_t i = 0; i < interface_nodes_.size(); ++i)
     nodes->coordinates.row(static_cast<Eigen::Index>(i)) =
         deck_->node(interface_nodes_[i]).transpose();
-  input_interface_ = Interface({{faces, input_variables_}});
+  std::vector<std::string> inputs = input_variables_;
+  if (drive_)
+    for (const auto& variable : calculix::DisplacementDrive::input_variables())
+      inputs.push_back(variable);
+  input_interface_ = Interface({{faces, inputs}});
   output_interface_ = Interface({{nodes, {"displacement"}}});
 }
 
@@ -339,7 +362,11 @@ const Interface& CalculixSolverWrapper::solve(const Interface& input) {
   try {
     const RowMatrix displacement =
         calculix::read_node_print(results, "displacements", node_set_name_, interface_nodes_);
-    output_interface_.values(node_set_name_, "displacement") = displacement;
+    output_interface_.values(node_set_name_, "displacement") =
+        drive_ ? drive_->balance(
+                     displacement,
+                     calculix::read_node_print(results, "forces", node_set_name_, interface_nodes_))
+               : displacement;
   } catch (const std::runtime_error& e) {
     fail(fmt::format("solver '{}' at {}: {}", name_, position(), e.what()));
   }
@@ -359,7 +386,25 @@ void CalculixSolverWrapper::write_loads(const Interface& input) const {
   if (!pressure.allFinite() || !traction.allFinite())
     fail(fmt::format("solver '{}' at {}: the interface loads contain NaN or infinity", name_,
                      position()));
-  loads_->write(file(kLoadsFile), pressure, traction);
+  if (!drive_) {
+    loads_->write(file(kLoadsFile), pressure, traction);
+    return;
+  }
+  calculix::DisplacementDrive::FaceInputs inputs{
+      pressure, traction.size() > 0 ? traction : RowMatrix::Zero(pressure.size(), 3),
+      input.values(surface_name_, "gap").col(0), input.values(surface_name_, "wall_displacement"),
+      input.values(surface_name_, "coverage").col(0)};
+  if (!inputs.gap.allFinite() || !inputs.wall_displacement.allFinite() ||
+      !inputs.coverage.allFinite())
+    fail(
+        fmt::format("solver '{}' at {}: the gap, wall displacement or coverage contain NaN or "
+                    "infinity",
+                    name_, position()));
+  drive_->plan(inputs);
+  std::ofstream out(file(kLoadsFile));
+  out << "** Interface loads of this coupling iteration, written by cocopp\n";
+  drive_->write(out);
+  if (!out.flush()) fail("cannot write the loads file " + file(kLoadsFile).string());
 }
 
 void CalculixSolverWrapper::write_iteration_deck() const {
@@ -388,6 +433,8 @@ void CalculixSolverWrapper::write_step(std::ofstream& out, const std::string& lo
   write_lines(out, {step.begin(), step.end() - 1});  // all but *END STEP
   out << "*INCLUDE, INPUT=" << loads_file << "\n";
   if (print) out << "*NODE PRINT, NSET=" << node_set_name_ << ", GLOBAL=YES\nU\n";
+  // The forces the driven nodes take, in their own systems (the driven direction's).
+  if (print && drive_) out << "*NODE PRINT, NSET=" << node_set_name_ << ", GLOBAL=NO\nRF\n";
   out << step.back().text << "\n";
 }
 

@@ -21,6 +21,9 @@
 // history-dependent deck (*PLASTIC, *CREEP, *CYCLIC HARDENING, *USER MATERIAL, *DEPVAR) or an
 // axisymmetric one needs: then it replays.
 //
+// `interface_drive: displacement` drives the nodes the other solver covers by its wall
+// position and returns the position that balances the forces (displacement_drive.hpp).
+//
 // Runs in the coupler process (no protocol): ccx is started through ChildProcess, like every
 // solver process, with the same timeout, log and clean-up rules.
 #include <filesystem>
@@ -29,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "solver_wrappers/calculix/displacement_drive.hpp"
 #include "solver_wrappers/calculix/input_deck.hpp"
 #include "solver_wrappers/calculix/interface_loads.hpp"
 #include "solver_wrappers/solver_wrapper.hpp"
@@ -109,12 +113,16 @@ class CalculixSolverWrapper : public SolverWrapper {
   bool allow_reduced_integration_ = false;
   std::filesystem::path log_file_;
   std::string state_reset_key_;
+  bool displacement_drive_ = false;  ///< interface_drive: displacement
+  int driven_dof_ = 1;
+  double surface_stiffness_ = 0.0;
   std::string working_directory_where_, input_file_where_, executable_where_, state_reset_where_;
   RunSettings run_;
 
   // From the deck.
   std::unique_ptr<calculix::InputDeck> deck_;
   std::unique_ptr<calculix::InterfaceLoads> loads_;
+  std::unique_ptr<calculix::DisplacementDrive> drive_;
   std::vector<std::int64_t> interface_nodes_;
   std::filesystem::path ccx_path_;
   StateReset state_reset_ = StateReset::kRestart;

@@ -150,6 +150,7 @@ FaceGeometry face_geometry(const InputDeck& deck, const ElementFace& face,
   const bool line = topo.shape == Shape::kLine2 || topo.shape == Shape::kLine3;
   const double thickness = topo.plane ? deck.thickness(face.element) : 1.0;
   geometry.weights = Eigen::VectorXd::Zero(xyz.rows());
+  geometry.normal_weights = Eigen::MatrixXd::Zero(xyz.rows(), 3);
   Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < (line ? 1 : 3); ++j) {
@@ -157,14 +158,19 @@ FaceGeometry face_geometry(const InputDeck& deck, const ElementFace& face,
       const Eigen::VectorXd n =
           shape_functions(topo.shape, points[i], line ? 0.0 : points[j], derivatives);
       const Eigen::MatrixXd tangents = xyz.transpose() * derivatives;  // 3 x (1 or 2)
-      const double jacobian =
-          line ? tangents.col(0).norm()
-               : Eigen::Vector3d(tangents.col(0)).cross(Eigen::Vector3d(tangents.col(1))).norm();
+      // The area element's normal: for an edge of a plane or axisymmetric element the tangent
+      // turned in the x-y plane; its sign is fixed below.
+      const Eigen::Vector3d t0 = tangents.col(0);
+      const Eigen::Vector3d area_normal =
+          line ? Eigen::Vector3d(t0.y(), -t0.x(), 0.0)
+               : Eigen::Vector3d(t0.cross(Eigen::Vector3d(tangents.col(1))));
+      const double jacobian = area_normal.norm();
       // A CAX edge stands for the ring it sweeps (x is the radius): ccx takes the *CLOAD of
       // axisymmetric models per 360 degrees, so the weights are for the whole ring.
       const double sweep = topo.axisymmetric ? 2 * kPi * n.dot(xyz.col(0)) : thickness;
       const double w = gauss_weights[i] * (line ? 1.0 : gauss_weights[j]) * jacobian * sweep;
       geometry.weights += w * n;
+      geometry.normal_weights += w * n * (area_normal / jacobian).transpose();
       first_moment += w * (xyz.transpose() * n);
     }
   }
@@ -173,6 +179,12 @@ FaceGeometry face_geometry(const InputDeck& deck, const ElementFace& face,
     throw DeckError("element " + std::to_string(face.element) + " face S" +
                     std::to_string(face.face) + " has no area (collapsed or repeated nodes?)");
   geometry.centroid = first_moment / geometry.area;
+  // Outward: away from the element's nodes (their mean lies inside a convex element).
+  Eigen::Vector3d inside = Eigen::Vector3d::Zero();
+  for (const auto node : element.nodes) inside += deck.node(node);
+  inside /= static_cast<double>(element.nodes.size());
+  const Eigen::Vector3d mean_normal = geometry.normal_weights.colwise().sum().transpose();
+  if (mean_normal.dot(geometry.centroid - inside) < 0) geometry.normal_weights *= -1.0;
   return geometry;
 }
 

@@ -18,6 +18,9 @@ namespace cocopp::calculix {
 struct FaceGeometry {
   std::vector<std::int64_t> nodes;
   Eigen::VectorXd weights;  ///< integral of each node's shape function over the face
+  /// Integral of each node's shape function times the outward unit normal over the face (one
+  /// row per node): a pressure p (pushing into the body) is the nodal forces -p times a row.
+  Eigen::MatrixXd normal_weights;
   double area = 0.0;
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
 };

@@ -29,18 +29,37 @@ void InterfaceLoads::move_faces(const NodeDisplacements& displacement) {
 }
 
 std::map<std::int64_t, Eigen::Vector3d> InterfaceLoads::nodal_forces(
-    const RowMatrix& traction) const {
+    const RowMatrix& traction, const Eigen::VectorXd& pressure) const {
   std::map<std::int64_t, Eigen::Vector3d> forces;
   for (std::size_t f = 0; f < geometry_.size(); ++f) {
     const auto& face = geometry_[f];
-    const Eigen::Vector3d t = traction.row(static_cast<Eigen::Index>(f)).transpose();
+    const auto row = static_cast<Eigen::Index>(f);
+    const Eigen::Vector3d t = traction.size() > 0 ? Eigen::Vector3d(traction.row(row).transpose())
+                                                  : Eigen::Vector3d::Zero();
+    const double p = pressure.size() > 0 ? pressure[row] : 0.0;
     for (std::size_t i = 0; i < face.nodes.size(); ++i) {
+      const auto node = static_cast<Eigen::Index>(i);
       auto [entry, inserted] = forces.try_emplace(face.nodes[i], Eigen::Vector3d::Zero());
       (void)inserted;
-      entry->second += face.weights[static_cast<Eigen::Index>(i)] * t;
+      entry->second += face.weights[node] * t - p * face.normal_weights.row(node).transpose();
     }
   }
   return forces;
+}
+
+void InterfaceLoads::write_nodal_forces(std::ostream& out,
+                                        const std::map<std::int64_t, Eigen::Vector3d>& forces,
+                                        const std::function<bool(std::int64_t, int)>& skip) const {
+  out << "*CLOAD\n";
+  for (const auto& [node, global_force] : forces) {
+    const NodalTransform* transform = deck_.transform(node);
+    const Eigen::Vector3d force =
+        transform ? Eigen::Vector3d(transform->axes_at(deck_.node(node)) * global_force)
+                  : global_force;
+    for (int dof = 0; dof < (plane_ ? 2 : 3); ++dof)
+      if (!skip || !skip(node, dof + 1))
+        out << fmt::format("{}, {}, {}\n", node, dof + 1, ccx_number(force[dof]));
+  }
 }
 
 void InterfaceLoads::write(const std::filesystem::path& file, const Eigen::VectorXd& pressure,
@@ -54,17 +73,7 @@ void InterfaceLoads::write(const std::filesystem::path& file, const Eigen::Vecto
       out << fmt::format("{}, P{}, {}\n", faces_[f].element, faces_[f].face,
                          ccx_number(pressure[static_cast<Eigen::Index>(f)]));
   }
-  if (traction.size() > 0) {
-    out << "*CLOAD\n";
-    for (const auto& [node, global_force] : nodal_forces(traction)) {
-      const NodalTransform* transform = deck_.transform(node);
-      const Eigen::Vector3d force =
-          transform ? Eigen::Vector3d(transform->axes_at(deck_.node(node)) * global_force)
-                    : global_force;
-      for (int dof = 0; dof < (plane_ ? 2 : 3); ++dof)
-        out << fmt::format("{}, {}, {}\n", node, dof + 1, ccx_number(force[dof]));
-    }
-  }
+  if (traction.size() > 0) write_nodal_forces(out, nodal_forces(traction));
   if (!out.flush()) throw std::runtime_error("cannot write the loads file " + file.string());
 }
 

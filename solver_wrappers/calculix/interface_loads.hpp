@@ -11,7 +11,9 @@
 // step's values replace the previous step's, and the user's own loads are left alone.
 #include <Eigen/Core>
 #include <filesystem>
+#include <functional>
 #include <map>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -35,8 +37,15 @@ class InterfaceLoads {
   /// traction then acts on the current area, as ccx's pressure does in an NLGEOM step.
   void move_faces(const NodeDisplacements& displacement);
 
-  /// Nodal forces (global x, y, z) of a uniform traction per face (faces x 3).
-  std::map<std::int64_t, Eigen::Vector3d> nodal_forces(const RowMatrix& traction) const;
+  /// Nodal forces (global x, y, z) of a uniform traction per face (faces x 3) and, if given,
+  /// a uniform pressure per face (pushing into the body).
+  std::map<std::int64_t, Eigen::Vector3d> nodal_forces(
+      const RowMatrix& traction, const Eigen::VectorXd& pressure = Eigen::VectorXd()) const;
+
+  /// *CLOAD cards of nodal forces (global), each in its node's *TRANSFORM system if it has
+  /// one; `skip(node, dof)` leaves out a direction (1-based dof).
+  void write_nodal_forces(std::ostream& out, const std::map<std::int64_t, Eigen::Vector3d>& forces,
+                          const std::function<bool(std::int64_t, int)>& skip = nullptr) const;
 
   /// Write the cards: `pressure` has one value per face (or is empty: no *DLOAD), `traction`
   /// one row per face (or is empty: no *CLOAD).

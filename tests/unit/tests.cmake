@@ -29,6 +29,7 @@ cocopp_unit_test(solver_wrappers/calculix SOURCES test_calculix_deck.cpp
 if(COCOPP_HAVE_CALCULIX)
   cocopp_unit_test(solver_wrappers/calculix SUFFIX ccx
                    SOURCES test_calculix_ccx.cpp test_calculix_state_reset.cpp
+                           test_calculix_displacement_drive.cpp
                    LIBS cocopp_solver_wrappers LABELS ccx)
   if(COCOPP_HAVE_PATCHED_CCX)  # the restart of plastic models needs the patched ccx
     target_compile_definitions(${COCOPP_LAST_TEST} PRIVATE COCOPP_HAVE_PATCHED_CCX=1)

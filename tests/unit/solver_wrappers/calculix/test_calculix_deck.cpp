@@ -118,6 +118,15 @@ TEST_F(DeckTest, QuadraticFaceWeightsAreTheConsistentNodalShares) {
   for (int i = 0; i < 4; ++i) EXPECT_NEAR(face.weights[i], -1.0 / 12, 1e-14);
   for (int i = 4; i < 8; ++i) EXPECT_NEAR(face.weights[i], 1.0 / 3, 1e-14);
   EXPECT_TRUE(face.centroid.isApprox(Eigen::Vector3d(0.5, 0.5, 0.0), 1e-14));
+  // A pressure's nodal forces: the same shares along the outward normal (-z for the face at
+  // the bottom of the element).
+  for (int i = 0; i < 8; ++i)
+    EXPECT_TRUE(
+        face.normal_weights.row(i).isApprox(face.weights[i] * Eigen::RowVector3d(0, 0, -1), 1e-14))
+        << "node " << i << ": " << face.normal_weights.row(i);
+  // The opposite face, S2 (z = 1), points up.
+  const auto top = calculix::face_geometry(deck, {1, 2});
+  EXPECT_TRUE(top.normal_weights.colwise().sum().isApprox(Eigen::RowVector3d(0, 0, 1), 1e-14));
   EXPECT_THROW(calculix::face_geometry(deck, {1, 7}), DeckError);
 }
 
@@ -127,6 +136,14 @@ TEST_F(DeckTest, SectorFaceAreaIsTheArcTimesTheLength) {
   const auto face = calculix::face_geometry(deck, deck.surface("INNER").front());
   EXPECT_NEAR(face.area, cylinder.inner_area(), 1e-9 * cylinder.inner_area());
   EXPECT_NEAR(face.centroid.head<2>().norm(), cylinder.ri, 1e-4 * cylinder.ri);
+  // The curved bore's normal turns across the face: summed, it is the area times the mean
+  // cosine, sin(a / 2) / (a / 2) for the sector's angle a, along the centroid's inward radius.
+  const Eigen::Vector3d inward =
+      -Eigen::Vector3d(face.centroid.x(), face.centroid.y(), 0).normalized();
+  const Eigen::Vector3d sum = face.normal_weights.colwise().sum().transpose();
+  const double half = cylinder.angle_degrees / 2 * kPi / 180;
+  EXPECT_NEAR(sum.dot(inward), face.area * std::sin(half) / half, 1e-9 * face.area);
+  EXPECT_NEAR((sum - sum.dot(inward) * inward).norm(), 0.0, 1e-9 * face.area);
 }
 
 TEST_F(DeckTest, PlaneElementEdgesCountTheThickness) {
@@ -155,6 +172,10 @@ TEST_F(DeckTest, AxisymmetricEdgesAreRings) {
   EXPECT_NEAR(bore.weights[1], ring / 6, 1e-12 * ring);
   EXPECT_NEAR(bore.weights[2], 2 * ring / 3, 1e-12 * ring);
   EXPECT_TRUE(bore.centroid.isApprox(Eigen::Vector3d(cylinder.ri, cylinder.length / 2, 0), 1e-12));
+  // The bore's outward normal (out of the wall) points to the axis: -x.
+  for (int i = 0; i < 3; ++i)
+    EXPECT_TRUE(
+        bore.normal_weights.row(i).isApprox(bore.weights[i] * Eigen::RowVector3d(-1, 0, 0), 1e-12));
 
   const auto end = calculix::face_geometry(deck, deck.surface("TOP").front());  // element 1
   const double r1 = cylinder.ri, r2 = cylinder.radius(2);

@@ -1,0 +1,177 @@
+#include "solver_wrappers/calculix/displacement_drive.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace cocopp::calculix {
+
+namespace {
+
+/// A face counts as covered by the other solver from this fraction on.
+constexpr double kDrivenCoverage = 0.5;
+
+bool is_keyword(const std::string& text) {
+  return !text.empty() && text[0] == '*' && (text.size() < 2 || text[1] != '*');
+}
+
+bool is_boundary_card(const std::string& text) {
+  return is_keyword(text) && upper(text).rfind("*BOUNDARY", 0) == 0;
+}
+
+}  // namespace
+
+const std::vector<std::string>& DisplacementDrive::input_variables() {
+  static const std::vector<std::string> variables = {"gap", "wall_displacement", "coverage"};
+  return variables;
+}
+
+DisplacementDrive::DisplacementDrive(const InputDeck& deck, const InterfaceLoads& loads,
+                                     std::vector<std::int64_t> interface_nodes, int dof,
+                                     double surface_stiffness)
+    : deck_(deck),
+      loads_(loads),
+      interface_nodes_(std::move(interface_nodes)),
+      dof_(dof),
+      surface_stiffness_(surface_stiffness) {
+  for (const auto& face : loads_.faces()) {
+    const std::string& type = deck_.element(face.element).type;
+    if (type.rfind("CAX", 0) == 0)
+      throw DeckError(fmt::format(
+          "element {} is a {}: interface_drive: displacement balances the other solver's "
+          "loads against ccx's reaction forces, and on an axisymmetric model ccx prints "
+          "reactions that are not the forces at the nodes (53 % off on a ring, "
+          "examples/wire_drawing/reaction_probe.py). Model the body as a 3D sector instead "
+          "(C3D20R with a cylindrical *TRANSFORM and the hoop displacement held)",
+          face.element, type));
+  }
+  for (const auto& line : deck_.step())
+    if (is_boundary_card(line.text))
+      throw DeckError(line.where +
+                      ": *BOUNDARY inside the step: with interface_drive: displacement the "
+                      "wrapper rewrites the boundary conditions of every step (*BOUNDARY, "
+                      "OP=NEW, then the deck's own): move it before *STEP");
+  model_boundary_ = model_boundary_cards(deck_);
+  for (std::size_t f = 0; f < loads_.geometry().size(); ++f)
+    for (const auto node : loads_.geometry()[f].nodes) faces_of_[node].push_back(f);
+}
+
+std::vector<std::string> DisplacementDrive::model_boundary_cards(const InputDeck& deck) const {
+  std::vector<std::string> lines;
+  bool inside = false;
+  for (const auto& line : deck.model_definition()) {
+    if (is_keyword(line.text)) inside = is_boundary_card(line.text);
+    if (inside && line.text.rfind("**", 0) != 0) lines.push_back(line.text);
+  }
+  return lines;
+}
+
+Eigen::Vector3d DisplacementDrive::direction(std::int64_t node) const {
+  if (const NodalTransform* transform = deck_.transform(node))
+    return transform->axes_at(deck_.node(node)).row(dof_ - 1).transpose();
+  return Eigen::Vector3d::Unit(dof_ - 1);
+}
+
+void DisplacementDrive::plan(const FaceInputs& inputs) {
+  const auto faces = static_cast<Eigen::Index>(loads_.faces().size());
+  if (inputs.pressure.size() != faces || inputs.gap.size() != faces ||
+      inputs.coverage.size() != faces || inputs.wall_displacement.rows() != faces ||
+      inputs.traction.rows() != faces)
+    throw std::invalid_argument("DisplacementDrive::plan: one value per interface face expected");
+  inputs_ = inputs;
+  driven_face_.assign(loads_.faces().size(), false);
+  for (Eigen::Index f = 0; f < faces; ++f)
+    driven_face_[static_cast<std::size_t>(f)] =
+        inputs.coverage[f] >= kDrivenCoverage && inputs.gap[f] > 0.0;
+  prescribed_.clear();
+  for (const auto node : interface_nodes_) {
+    const auto found = faces_of_.find(node);
+    if (found == faces_of_.end()) continue;
+    const auto& faces_of_node = found->second;
+    if (!std::all_of(faces_of_node.begin(), faces_of_node.end(),
+                     [&](std::size_t f) { return driven_face_[f]; }))
+      continue;
+    const Eigen::Vector3d e = direction(node);
+    double sum = 0.0;
+    for (const auto f : faces_of_node) {
+      const auto row = static_cast<Eigen::Index>(f);
+      sum += inputs.wall_displacement.row(row).dot(e.transpose()) / inputs.coverage[row];
+    }
+    prescribed_[node] = sum / static_cast<double>(faces_of_node.size());
+  }
+}
+
+void DisplacementDrive::write(std::ostream& out) const {
+  out << "** The nodes under the other solver, driven by its wall position (cocopp)\n"
+         "*BOUNDARY, OP=NEW\n";
+  for (const auto& [node, value] : prescribed_)
+    out << fmt::format("{}, {}, {}, {}\n", node, dof_, dof_, ccx_number(value));
+  out << "** The deck's own boundary conditions again (OP=NEW removed them)\n";
+  for (const auto& line : model_boundary_) out << line << "\n";
+  out << "** The other solver's loads, none in a driven direction\n";
+  loads_.write_nodal_forces(
+      out, loads_.nodal_forces(inputs_.traction, inputs_.pressure),
+      [&](std::int64_t node, int dof) { return dof == dof_ && prescribed_.count(node) != 0; });
+}
+
+double DisplacementDrive::share(std::int64_t node, std::size_t face) const {
+  const auto& geometry = loads_.geometry();
+  const auto weight_in = [&](std::size_t f) {
+    const auto& nodes = geometry[f].nodes;
+    const auto at = std::find(nodes.begin(), nodes.end(), node) - nodes.begin();
+    return geometry[f].weights[static_cast<Eigen::Index>(at)];
+  };
+  double total = 0.0;
+  for (const auto f : faces_of_.at(node)) total += weight_in(f);
+  return weight_in(face) / total;
+}
+
+RowMatrix DisplacementDrive::balance(const RowMatrix& displacement,
+                                     const RowMatrix& reaction) const {
+  std::map<std::int64_t, Eigen::Index> row_of;
+  for (std::size_t i = 0; i < interface_nodes_.size(); ++i)
+    row_of[interface_nodes_[i]] = static_cast<Eigen::Index>(i);
+  // The nodal imbalance along the driven direction: the other solver's force minus the force
+  // the structure takes (its reaction). Elsewhere the structure takes what is applied.
+  const auto film_forces = loads_.nodal_forces(inputs_.traction, inputs_.pressure);
+  std::map<std::int64_t, double> imbalance;
+  for (const auto& [node, value] : prescribed_) {
+    const auto film = film_forces.find(node);
+    const double film_force = film == film_forces.end() ? 0.0 : film->second.dot(direction(node));
+    imbalance[node] = film_force - reaction(row_of.at(node), dof_ - 1);
+  }
+  // Per driven face, the traction whose nodal forces a face's nodes share: each node's
+  // imbalance split among its faces as a uniform traction's nodal force is. Exact for a
+  // uniform traction, the totals kept, and blind to a pattern whose shares cancel on every
+  // face (a reduced-integration element's hoop zigzag, which a least-squares fit to the
+  // consistent nodal forces would take for a traction).
+  std::map<std::size_t, double> move;
+  largest_imbalance_ = 0.0;
+  for (std::size_t f = 0; f < driven_face_.size(); ++f) {
+    if (!driven_face_[f]) continue;
+    double force = 0.0;
+    for (const auto node : loads_.geometry()[f].nodes) {
+      const auto at = imbalance.find(node);
+      if (at != imbalance.end()) force += at->second * share(node, f);
+    }
+    const double traction = force / loads_.geometry()[f].area;
+    const auto row = static_cast<Eigen::Index>(f);
+    const double film_stiffness = std::max(0.0, 2.0 * inputs_.pressure[row] / inputs_.gap[row]);
+    move[f] = traction / (film_stiffness + surface_stiffness_);
+    largest_imbalance_ = std::max(largest_imbalance_, std::abs(traction));
+  }
+  // A driven node moves by its faces' moves, weighted by its shares in them.
+  RowMatrix result = displacement;
+  for (const auto& [node, value] : prescribed_) {
+    double step = 0.0;
+    for (const auto f : faces_of_.at(node)) step += share(node, f) * move.at(f);
+    const Eigen::Vector3d e = direction(node);
+    const Eigen::Index row = row_of.at(node);
+    result.row(row) += (value + step - result.row(row).dot(e.transpose())) * e.transpose();
+  }
+  return result;
+}
+
+}  // namespace cocopp::calculix

@@ -1,0 +1,90 @@
+#pragma once
+// DisplacementDrive: the calculix wrapper's `interface_drive: displacement`. Where the other
+// solver covers the structure's surface (a lubricant film on a wire), the nodes are driven by
+// the other solver's wall position instead of loaded by its pressure, and the wrapper returns
+// the position that balances the two forces after one Newton step with a local stiffness
+// (docs/design/displacement-driven-wire.md):
+//   1. plan(): a face is driven when the other solver covers at least half of it; a node when
+//      every interface face it belongs to is driven. Its prescribed value in the driven
+//      direction is the covered mean of its faces' wall displacement.
+//   2. write(): *BOUNDARY, OP=NEW with the driven nodes (ccx keeps a prescribed node
+//      prescribed in later steps otherwise, and the wire slides), the deck's own *BOUNDARY
+//      cards again (OP=NEW dropped them), and the loads as consistent nodal forces, but none
+//      in a driven direction (ccx's reaction there is the force the structure takes).
+//   3. balance(): per driven face the traction q along the driven direction that the film
+//      gives beyond what the structure takes (the nodal imbalances, each split among a node's
+//      faces as a uniform traction's force is); the face moves by q / (K_film + K_structure),
+//      K_film = 2 p / gap (a lubricant film's pressure goes as 1 / gap^2) and K_structure the
+//      case's `surface_stiffness`; a node by its faces' moves, weighted alike.
+// ccx's reactions are the nodal forces only on 3D models: on an axisymmetric (CAX) one they
+// are off by up to 53 % (examples/wire_drawing/reaction_probe.py), so the wrapper refuses it.
+#include <Eigen/Core>
+#include <cstdint>
+#include <map>
+#include <ostream>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "core/data/interface.hpp"
+#include "solver_wrappers/calculix/input_deck.hpp"
+#include "solver_wrappers/calculix/interface_loads.hpp"
+
+namespace cocopp::calculix {
+
+class DisplacementDrive {
+ public:
+  /// The input variables this mode adds to pressure and traction (per interface face).
+  static const std::vector<std::string>& input_variables();
+
+  /// `dof`: the driven direction (1..3, in a node's *TRANSFORM system if it has one);
+  /// `surface_stiffness`: the structure's stiffness per area against a push of its surface
+  /// (Pa/m). Throws DeckError for decks it cannot drive (axisymmetric elements on the
+  /// interface, *BOUNDARY inside the step).
+  DisplacementDrive(const InputDeck& deck, const InterfaceLoads& loads,
+                    std::vector<std::int64_t> interface_nodes, int dof, double surface_stiffness);
+
+  /// This iteration's inputs (from the wrapper's input interface, one row per face).
+  struct FaceInputs {
+    Eigen::VectorXd pressure;
+    RowMatrix traction;
+    Eigen::VectorXd gap;
+    RowMatrix wall_displacement;
+    Eigen::VectorXd coverage;
+  };
+  void plan(const FaceInputs& inputs);
+  /// The step's loads file: boundary cards, then the loads (see the header comment).
+  void write(std::ostream& out) const;
+  /// The interface nodes' displacement to return (one row per interface node, global):
+  /// ccx's `displacement`, with the driven direction of driven nodes replaced by the balanced
+  /// position; `reaction` holds ccx's RF per interface node in the nodes' own systems.
+  RowMatrix balance(const RowMatrix& displacement, const RowMatrix& reaction) const;
+
+  std::size_t driven_nodes() const { return prescribed_.size(); }
+  /// The largest force imbalance per area of the last balance() (Pa), for messages.
+  double largest_imbalance() const { return largest_imbalance_; }
+
+ private:
+  /// The driven direction at a node, global.
+  Eigen::Vector3d direction(std::int64_t node) const;
+  /// The part of a node's force that `face` gives under a uniform traction on all its faces.
+  double share(std::int64_t node, std::size_t face) const;
+  std::vector<std::string> model_boundary_cards(const InputDeck& deck) const;
+
+  const InputDeck& deck_;
+  const InterfaceLoads& loads_;
+  std::vector<std::int64_t> interface_nodes_;
+  int dof_;
+  double surface_stiffness_;
+  std::vector<std::string> model_boundary_;
+  /// Per node: the faces it belongs to.
+  std::map<std::int64_t, std::vector<std::size_t>> faces_of_;
+
+  // From plan().
+  FaceInputs inputs_;
+  std::vector<bool> driven_face_;
+  std::map<std::int64_t, double> prescribed_;  ///< driven node -> value along direction()
+  mutable double largest_imbalance_ = 0.0;
+};
+
+}  // namespace cocopp::calculix

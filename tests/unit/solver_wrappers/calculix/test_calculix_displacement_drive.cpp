@@ -1,0 +1,168 @@
+// The calculix wrapper with `interface_drive: displacement` (displacement_drive.hpp) on Lamé's
+// thick-walled cylinder (a 1-degree sector, plane strain), whose bore under a pressure p moves
+// radially by u* (the ccx solution agrees with Lamé to 1e-4, test_calculix_ccx.cpp):
+// - driven at u*, the wrapper returns u*: ccx's reactions balance the pressure there;
+// - driven at 2 u*, with the bore's true stiffness per area (p / u*), one Newton step lands on
+//   u*: the imbalance's sign, size and units are right;
+// - nodes leave the driven set from one step to the next (the sliding interface).
+// Needs ccx (Debian package calculix-ccx); CMake builds this test only when ccx is found.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <functional>
+
+#include "solver_wrappers/calculix/calculix_solver_wrapper.hpp"
+#include "tests/support/calculix_models.hpp"
+#include "tests/support/error_message.hpp"
+#include "tests/unit/solver_wrappers/calculix/calculix_test_helpers.hpp"
+
+namespace cocopp {
+namespace {
+
+using testing::CalculixCase;
+using testing::max_abs;
+using testing::SectorCylinder;
+
+constexpr double kPressure = 100e6;
+
+SectorCylinder cylinder() {
+  SectorCylinder model;
+  model.axial = 4;  // four faces on the bore, so that some nodes are shared
+  return model;
+}
+
+double bore_displacement() {
+  const SectorCylinder model = cylinder();
+  return model.lame_radial_displacement(kPressure, model.ri);
+}
+
+/// The settings of the displacement drive with the bore's stiffness per area times `factor`.
+std::string drive_keys(double factor = 1.0) {
+  return fmt::format("interface_drive: displacement\nsurface_stiffness: {}\n",
+                     factor * kPressure / bore_displacement());
+}
+
+/// The wrapper's input: the pressure on every face, the wall at `radial` (outward from the
+/// axis) on the faces `covered` says, a thick film (its stiffness 2 p / gap is negligible).
+Interface drive_inputs(CalculixCase& test, double radial,
+                       const std::function<bool(Eigen::Index)>& covered) {
+  Interface input = test.loads(kPressure);
+  const auto& faces = *input.parts().front().model_part;
+  auto wall = input.values(faces.name, "wall_displacement");
+  auto coverage = input.values(faces.name, "coverage");
+  input.values(faces.name, "gap").setConstant(1.0);
+  for (Eigen::Index f = 0; f < faces.coordinates.rows(); ++f) {
+    const Eigen::Vector3d e_r =
+        Eigen::Vector3d(faces.coordinates(f, 0), faces.coordinates(f, 1), 0.0).normalized();
+    wall.row(f) = radial * e_r.transpose();
+    coverage(f, 0) = covered(f) ? 1.0 : 0.0;
+  }
+  return input;
+}
+
+Eigen::VectorXd solve_radial(CalculixCase& test, const Interface& input) {
+  const Interface& output = test.wrapper().solve(input);
+  return test.radial(output.values(test.nodes().name, "displacement"));
+}
+
+const auto kEveryFace = [](Eigen::Index) { return true; };
+
+TEST(CalculixDisplacementDrive, DrivenAtTheLoadedSolutionStaysThere) {
+  CalculixCase test;
+  test.start(cylinder().deck(), drive_keys());
+  const double u = bore_displacement();
+  const Eigen::VectorXd radial = solve_radial(test, drive_inputs(test, u, kEveryFace));
+  for (Eigen::Index i = 0; i < radial.size(); ++i)
+    EXPECT_NEAR(radial[i], u, 2e-4 * u) << "node " << test.nodes().ids[i];
+}
+
+TEST(CalculixDisplacementDrive, OneNewtonStepWithTheTrueStiffnessLandsOnTheSolution) {
+  CalculixCase test;
+  test.start(cylinder().deck(), drive_keys());
+  const double u = bore_displacement();
+  // Driven twice as far, the bore takes twice the pressure: the imbalance is -p, and p over
+  // the stiffness p / u* is the step back to u*.
+  const Eigen::VectorXd radial = solve_radial(test, drive_inputs(test, 2 * u, kEveryFace));
+  for (Eigen::Index i = 0; i < radial.size(); ++i)
+    EXPECT_NEAR(radial[i], u, 2e-4 * u) << "node " << test.nodes().ids[i];
+  // With a stiffness estimate twice too high the step goes halfway: the update contracts.
+  CalculixCase stiff;
+  stiff.start(cylinder().deck(), drive_keys(2.0));
+  const Eigen::VectorXd halfway = solve_radial(stiff, drive_inputs(stiff, 2 * u, kEveryFace));
+  for (Eigen::Index i = 0; i < halfway.size(); ++i)
+    EXPECT_NEAR(halfway[i], 1.5 * u, 3e-4 * u) << "node " << stiff.nodes().ids[i];
+}
+
+TEST(CalculixDisplacementDrive, PartlyCoveredSurfaceIsDrivenWhereCoveredAndLoadedElsewhere) {
+  CalculixCase test;
+  test.start(cylinder().deck(), drive_keys());
+  const double u = bore_displacement();
+  // The first two faces covered: their nodes are driven at u*, except the corner shared with
+  // the third face; the rest is loaded by the pressure alone. Both give u*, to 4e-4 where they
+  // meet: C3D20R's solution under the pressure is not quite uniform around the hoop (the
+  // reactions of the uniformly driven bore show a hoop zigzag of 2-5 % that cancels on every
+  // face), and the faces next to the free nodes do not cancel it entirely.
+  const Eigen::VectorXd radial =
+      solve_radial(test, drive_inputs(test, u, [](Eigen::Index f) { return f < 2; }));
+  for (Eigen::Index i = 0; i < radial.size(); ++i)
+    EXPECT_NEAR(radial[i], u, 5e-4 * u) << "node " << test.nodes().ids[i];
+}
+
+TEST(CalculixDisplacementDrive, NodesLeaveTheDrivenSetInTheNextStep) {
+  CalculixCase test;
+  test.start(cylinder().deck(), drive_keys(1e6));  // stiff: the bore stays near 2 u*
+  const double u = bore_displacement();
+  const Eigen::VectorXd driven = solve_radial(test, drive_inputs(test, 2 * u, kEveryFace));
+  EXPECT_NEAR(max_abs(driven), 2 * u, 1e-3 * u);
+  test.wrapper().finalize_step();
+  test.wrapper().initialize_step(2, 2.0);
+  // Nothing covered: every node is released (ccx keeps a prescribed node otherwise) and the
+  // pressure alone gives u*; the deck's plane strain still holds (its *BOUNDARY again).
+  const Interface& output =
+      test.wrapper().solve(drive_inputs(test, 2 * u, [](Eigen::Index) { return false; }));
+  const RowMatrix displacement = output.values(test.nodes().name, "displacement");
+  const Eigen::VectorXd radial = test.radial(displacement);
+  for (Eigen::Index i = 0; i < radial.size(); ++i)
+    EXPECT_NEAR(radial[i], u, 2e-4 * u) << "node " << test.nodes().ids[i];
+  EXPECT_LT(displacement.col(2).cwiseAbs().maxCoeff(), 1e-6 * u);
+}
+
+TEST(CalculixDisplacementDrive, RefusesAnAxisymmetricModel) {
+  CalculixCase test;
+  SectorCylinder model = cylinder();
+  model.element_type = "CAX8";
+  try {
+    test.start(model.deck(), drive_keys());
+    FAIL() << "an axisymmetric model was accepted";
+  } catch (const CaseError& e) {
+    EXPECT_CONTAINS(e.what(), "CAX8");
+    EXPECT_CONTAINS(e.what(), "reaction_probe.py");
+    EXPECT_CONTAINS(e.what(), "3D sector");
+  }
+}
+
+TEST(CalculixDisplacementDrive, RefusesABoundaryInsideTheStep) {
+  CalculixCase test;
+  SectorCylinder model = cylinder();
+  model.extra_step_cards = "*BOUNDARY\nSUPPORT, 1, 1\n";
+  try {
+    test.start(model.deck(), drive_keys());
+    FAIL() << "a *BOUNDARY in the step was accepted";
+  } catch (const CaseError& e) {
+    EXPECT_CONTAINS(e.what(), "wall.inp:");
+    EXPECT_CONTAINS(e.what(), "move it before *STEP");
+  }
+}
+
+TEST(CalculixDisplacementDrive, NeedsTheSurfaceStiffness) {
+  CalculixCase test;
+  try {
+    test.create(cylinder().deck(), "interface_drive: displacement\n");
+    FAIL() << "no surface_stiffness was accepted";
+  } catch (const CaseError& e) {
+    EXPECT_CONTAINS(e.what(), "surface_stiffness");
+  }
+}
+
+}  // namespace
+}  // namespace cocopp
