@@ -7,6 +7,10 @@
 // current positions (initial coordinates plus the latest displacement each side knows of) every
 // time step or every coupling iteration (`rebuild`).
 //
+// `coverage`: an inner solver that takes this variable, which the other side does not give,
+// receives the input mapper applied to ones (how much of each of its faces the other side
+// covers: the calculix wrapper driven by displacement under a film needs it).
+//
 // A moving frame: `frame_velocity: [vx, vy, vz]` says that the inner solver describes its
 // body in a frame that moves at this velocity (in the inner solver's coordinates, before the
 // transformers) relative to the other solver's. Its points are then at their coordinates plus
@@ -81,7 +85,10 @@ class MappedSolverWrapper : public SolverWrapper {
     for (const auto& pair : pairs_)
       for (const auto& variable : variables_of(inner_input, pair.inner_input_part))
         inner_input.values(pair.inner_input_part, variable) =
-            pair.input_mapper->map(input_.values(pair.outer_input_part, variable));
+            is_coverage(variable, pair)
+                ? pair.input_mapper->map(
+                      RowMatrix::Ones(initial_coordinates(input_, pair.outer_input_part).rows(), 1))
+                : pair.input_mapper->map(input_.values(pair.outer_input_part, variable));
     map_seconds_ += seconds_since(start);
     const Interface& inner_output = inner_->solve(inner_input);
     const auto output_start = Clock::now();
@@ -173,12 +180,21 @@ class MappedSolverWrapper : public SolverWrapper {
     }
   }
 
-  /// Every variable the receiving side takes must be given by the sending side.
+  /// `coverage`, which the inner solver takes and the other side does not give: the input
+  /// mapper applied to ones, the fraction of each inner point's share that the other side's
+  /// interface covers (1 inside it, 0 outside, between on the faces across its edge).
+  bool is_coverage(const std::string& variable, const Pair& pair) const {
+    const auto given = variables_of(input_, pair.outer_input_part);
+    return variable == "coverage" && std::find(given.begin(), given.end(), variable) == given.end();
+  }
+
+  /// Every variable the receiving side takes must be given by the sending side (`coverage`
+  /// the mapper makes itself).
   void check_variables(const Interface& from, const std::string& from_part, const Interface& to,
                        const std::string& to_part) const {
     const auto given = variables_of(from, from_part);
     for (const auto& variable : variables_of(to, to_part))
-      if (std::find(given.begin(), given.end(), variable) == given.end())
+      if (variable != "coverage" && std::find(given.begin(), given.end(), variable) == given.end())
         throw std::runtime_error(fmt::format(
             "mapped solver '{}': model part '{}' needs '{}', which model part '{}' does not "
             "give (it gives: {})",

@@ -3,6 +3,8 @@
 // positions where it overlaps the fluid, and zero (ambient) outside.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "solver_wrappers/solver_wrapper.hpp"
 
 namespace cocopp {
@@ -64,7 +66,9 @@ class TranslatingWire : public SolverWrapper {
     auto nodes = line("wire", 41, -0.5, 0.5);
     auto faces =
         settings.get<bool>("faces", false) ? line("faces", 40, -0.5 + 0.0125, 0.5 - 0.0125) : nodes;
-    input_ = Interface({{faces, {"pressure"}}});
+    std::vector<std::string> inputs = {"pressure"};
+    if (settings.get<bool>("coverage", false)) inputs.push_back("coverage");
+    input_ = Interface({{faces, inputs}});
     output_ = Interface({{nodes, {"displacement"}}});
     last = this;
   }
@@ -75,6 +79,9 @@ class TranslatingWire : public SolverWrapper {
   void initialize_step(int step, double) override { step_ = step; }
   const Interface& solve(const Interface& input) override {
     received = input.values(input.parts()[0].model_part->name, "pressure");
+    const auto& variables = input.parts()[0].variables;
+    if (std::find(variables.begin(), variables.end(), "coverage") != variables.end())
+      coverage = input.values(input.parts()[0].model_part->name, "coverage");
     auto displacement = output_.values("wire", "displacement");
     displacement.col(1).setConstant(0.001 * step_);
     displacement.col(2).setConstant(translation_ * step_);
@@ -85,7 +92,7 @@ class TranslatingWire : public SolverWrapper {
   void finalize() override {}
 
   static inline TranslatingWire* last = nullptr;
-  RowMatrix received;
+  RowMatrix received, coverage;
 
  private:
   std::string name_;
@@ -145,6 +152,38 @@ TEST(MappedWrapper, SlidingWireGetsTheFluidPressureWhereItOverlaps) {
   // The wire went from half outside on one end to half outside on the other.
   EXPECT_GT(inside_total, 0);
   EXPECT_GT(outside_total, 0);
+}
+
+// A solver that takes `coverage` gets the input mapper applied to ones: 1 where the fluid
+// covers its points, 0 outside; with the overlap mapper the fraction of the face across the
+// fluid's end.
+TEST(MappedWrapper, CoverageIsTheMappedOne) {
+  Fluid fluid;
+  auto mapped = mapped_wire(fluid, ", faces: true, coverage: true", "[y]");
+  mapped->initialize_step(1, 1.0);
+  mapped->solve(fluid.output_interface());
+  const auto& wire = *TranslatingWire::last;
+  const Eigen::VectorXd z = wire.input_interface().parts()[0].model_part->coordinates.col(2);
+  for (Eigen::Index i = 0; i < z.size(); ++i)
+    EXPECT_EQ(wire.coverage(i, 0), z(i) >= 0.0 ? 1.0 : 0.0) << "z " << z(i);
+
+  // Overlap: each fluid point stands for the segment half-way to its neighbours, so the fluid
+  // covers [-0.0025, 1.0025]; of the wire's face [-0.025, 0], a tenth.
+  const Settings settings = Settings::load_string(
+      "type: mapped\nsolver_wrapper: {type: test_translating_wire, faces: true, coverage: "
+      "true}\ninput_mapper: {type: overlap, directions: [z]}\noutput_mapper: {type: nearest, "
+      "directions: [z], components: [y]}\n",
+      "case.yaml");
+  auto overlap = SolverWrapperRegistry::instance().create(settings, RunSettings{});
+  overlap->initialize();
+  overlap->adopt_interfaces(fluid.output_interface(), fluid.input_interface());
+  overlap->initialize_step(1, 1.0);
+  overlap->solve(fluid.output_interface());
+  const RowMatrix& fraction = TranslatingWire::last->coverage;
+  for (Eigen::Index i = 0; i < z.size(); ++i) {
+    const double expected = std::clamp((z(i) + 0.0125 + 0.0025) / 0.025, 0.0, 1.0);
+    EXPECT_NEAR(fraction(i, 0), expected, 1e-12) << "z " << z(i);
+  }
 }
 
 TEST(MappedWrapper, FacesWithoutDisplacementMoveWithTheNodes) {
