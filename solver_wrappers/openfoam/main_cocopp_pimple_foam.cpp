@@ -147,12 +147,17 @@ int main(int argc, char* argv[]) {
       "coupler gives the displacement of the interface patches and receives pressure and "
       "traction (Pa) on their faces. Started by `cocopp run` (solver type openfoam).");
   argList::addOption("patches", "(patch ...)", "the fluid-structure interface patches");
+  argList::addOption("gapPatch", "patch",
+                     "also output, on the interface faces, the gap (distance to this patch) and "
+                     "the wall displacement (of the face centres): what a structure driven by "
+                     "displacement under a film takes");
   argList args(argc, argv);
   if (!args.checkRootCase()) FatalError.exit();
   // OpenFOAM's fatal errors become exceptions, reported to the coupler with their message.
   FatalError.throwExceptions();
   FatalIOError.throwExceptions();
-  PimpleFoamSolver solver(args, args.getList<word>("patches", false));
+  PimpleFoamSolver solver(args, args.getList<word>("patches", false),
+                          args.found("gapPatch") ? args.get<word>("gapPatch") : word());
   if (!Pstream::master()) {
     try {
       follow_master(solver);

@@ -3,8 +3,9 @@
 //
 // Keys (docs/solver-wrappers-openfoam.md): those of `process` (working_directory is the
 // OpenFOAM case directory; the default command is [<bin>/cocoppPimpleFoam, -patches, (...)])
-// plus `boundary_names`, the interface patches, and `cores`: more than 1 decomposes the case
-// (decomposePar) and runs the application under mpirun. check() checks the case before
+// plus `boundary_names`, the interface patches, `gap_patch` (the interface faces then also
+// output their gap to this patch and their wall displacement), and `cores`: more than 1 decomposes
+// the case (decomposePar) and runs the application under mpirun. check() checks the case before
 // anything runs: fixed deltaT equal to the coupler's, a dynamic mesh with a motion solver, the
 // patches in the mesh, the density for the loads in Pa, the decomposition.
 #include <fmt/format.h>
@@ -33,10 +34,12 @@ std::vector<std::string> read_boundary_names(const Settings& settings) {
   return names;
 }
 
-DefaultCommand pimple_foam_command(const std::vector<std::string>& boundary_names, int cores) {
+DefaultCommand pimple_foam_command(const std::vector<std::string>& boundary_names, int cores,
+                                   const std::string& gap_patch) {
   const std::string application = (builtin_solver_directory() / "cocoppPimpleFoam").string();
   // OpenFOAM's list syntax for the word list option: -patches '(wall top)'.
-  const std::vector<std::string> patches = {"-patches", "(" + join(boundary_names, " ") + ")"};
+  std::vector<std::string> patches = {"-patches", "(" + join(boundary_names, " ") + ")"};
+  if (!gap_patch.empty()) patches.insert(patches.end(), {"-gapPatch", gap_patch});
   // All of OpenFOAM's environment that Debian's build needs (its etc/ files); its libraries
   // read it while they load.
   const std::vector<std::pair<std::string, std::string>> environment = {
@@ -62,7 +65,8 @@ class OpenFoamSolverWrapper : public ProcessSolverWrapper {
  public:
   OpenFoamSolverWrapper(const Settings& settings, const RunSettings& run)
       : OpenFoamSolverWrapper(settings, run, read_boundary_names(settings),
-                              settings.get_int_in_range("cores", 1, 1)) {}
+                              settings.get_int_in_range("cores", 1, 1),
+                              settings.get<std::string>("gap_patch", "")) {}
 
   void check() const override {
     ProcessSolverWrapper::check();
@@ -80,8 +84,9 @@ class OpenFoamSolverWrapper : public ProcessSolverWrapper {
 
  private:
   OpenFoamSolverWrapper(const Settings& settings, const RunSettings& run,
-                        std::vector<std::string> boundary_names, int cores)
-      : ProcessSolverWrapper(settings, run, pimple_foam_command(boundary_names, cores)),
+                        std::vector<std::string> boundary_names, int cores,
+                        const std::string& gap_patch)
+      : ProcessSolverWrapper(settings, run, pimple_foam_command(boundary_names, cores, gap_patch)),
         boundary_names_(std::move(boundary_names)),
         cores_(cores),
         delta_t_(run.delta_t),

@@ -43,8 +43,12 @@ std::string patch_list(const wordList& names) {
 
 }  // namespace
 
-PimpleFoamSolver::PimpleFoamSolver(argList& args, const wordList& patch_names)
-    : args_(args), patch_names_(patch_names), step_start_(std::make_unique<StepStartState>()) {}
+PimpleFoamSolver::PimpleFoamSolver(argList& args, const wordList& patch_names,
+                                   const word& gap_patch)
+    : args_(args),
+      patch_names_(patch_names),
+      gap_patch_name_(gap_patch),
+      step_start_(std::make_unique<StepStartState>()) {}
 
 PimpleFoamSolver::~PimpleFoamSolver() = default;
 
@@ -159,6 +163,12 @@ void PimpleFoamSolver::find_patches() {
                            << run_time_->timePath() / "pointDisplacement" << exit(FatalError);
     numbering_.emplace_back(boundary[patch_ids_[i]], point_labels, face_labels);
   }
+  if (gap_patch_name_.empty()) return;
+  gap_patch_id_ = boundary.findPatchID(gap_patch_name_);
+  if (gap_patch_id_ < 0)
+    FatalErrorInFunction << "the gap patch " << gap_patch_name_ << " (-gapPatch) is not in "
+                         << mesh_->boundaryMesh().objectPath()
+                         << "; the patches are: " << boundary.names() << exit(FatalError);
 }
 
 void PimpleFoamSolver::check_run(const sdk::RunInfo& run) const {
@@ -203,11 +213,14 @@ sdk::InterfaceDescription PimpleFoamSolver::interface_description() const {
                                        point_coordinates,
                                        {"displacement"},
                                        {}});
-    description.model_parts.push_back({patch_names_[i] + "_faces",
-                                       ids(numbering.face_ids()),
-                                       face_coordinates,
-                                       {},
-                                       {"pressure", "traction"}});
+    description.model_parts.push_back(
+        {patch_names_[i] + "_faces",
+         ids(numbering.face_ids()),
+         face_coordinates,
+         {},
+         gap_patch_id_ < 0
+             ? std::vector<std::string>{"pressure", "traction"}
+             : std::vector<std::string>{"pressure", "traction", "gap", "wall_displacement"}});
   }
   description.initial_output = loads();
   return description;
@@ -487,8 +500,36 @@ std::vector<double> PimpleFoamSolver::loads() const {
     for (const auto& part : {numbering_[i].gather_faces(pressure, 1),
                              numbering_[i].gather_faces(flatten(traction), 3)})
       values.insert(values.end(), part.begin(), part.end());
+    if (gap_patch_id_ < 0) continue;
+    // The wall's own motion: the face centres now against those of the initial mesh.
+    const polyPatch& patch = mesh_->boundaryMesh()[id];
+    vectorField wall(patch.faceCentres());
+    forAll(patch, face_i) wall[face_i] -= patch[face_i].centre(initial_points());
+    for (const auto& part :
+         {numbering_[i].gather_faces(gaps(id), 1), numbering_[i].gather_faces(flatten(wall), 3)})
+      values.insert(values.end(), part.begin(), part.end());
   }
   return values;
+}
+
+scalarField PimpleFoamSolver::gaps(label id) const {
+  // The gap patch's faces from every rank (a film's wall has a few hundred), then the
+  // distance from each interface face centre to the nearest of them.
+  const polyPatch& gap_patch = mesh_->boundaryMesh()[gap_patch_id_];
+  List<List<pointField>> faces(Pstream::nProcs());
+  faces[Pstream::myProcNo()].setSize(gap_patch.size());
+  forAll(gap_patch, f) faces[Pstream::myProcNo()][f] = gap_patch[f].points(mesh_->points());
+  Pstream::gatherList(faces);
+  Pstream::scatterList(faces);
+  const vectorField centres(mesh_->boundaryMesh()[id].faceCentres());
+  scalarField result(centres.size(), GREAT);
+  for (const auto& rank : faces)
+    for (const auto& points : rank) {
+      const face polygon(identity(points.size()));
+      forAll(centres, i) result[i] =
+          min(result[i], polygon.nearestPoint(centres[i], points).distance());
+    }
+  return result;
 }
 
 void PimpleFoamSolver::finalize_step() {

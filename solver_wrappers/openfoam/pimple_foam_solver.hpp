@@ -73,7 +73,10 @@ class RestartablePimpleControl : public Foam::pimpleControl {
 
 class PimpleFoamSolver : public sdk::Solver {
  public:
-  PimpleFoamSolver(Foam::argList& args, const Foam::wordList& patch_names);
+  /// `gap_patch`: if not empty, the interface faces also output their gap to this patch and
+  /// their wall displacement.
+  PimpleFoamSolver(Foam::argList& args, const Foam::wordList& patch_names,
+                   const Foam::word& gap_patch = Foam::word());
   ~PimpleFoamSolver() override;
 
   sdk::InterfaceDescription initialize(const sdk::RunInfo& run) override;
@@ -114,12 +117,17 @@ class PimpleFoamSolver : public sdk::Solver {
   /// volume.
   void check_cells_not_inverted() const;
   std::vector<double> loads() const;
+  /// Per face of interface patch `id`: the distance from its centre to the gap patch (on every
+  /// rank's faces of it).
+  Foam::scalarField gaps(Foam::label id) const;
   sdk::InterfaceDescription interface_description() const;
   std::size_t input_size() const;
 
   Foam::argList& args_;
   Foam::wordList patch_names_;
   Foam::labelList patch_ids_;
+  Foam::word gap_patch_name_;
+  Foam::label gap_patch_id_ = -1;
   std::vector<PatchNumbering> numbering_;  ///< per patch: the coupler's order
   double rho_ = 0.0;
 
