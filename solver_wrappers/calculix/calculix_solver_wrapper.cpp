@@ -111,6 +111,7 @@ CalculixSolverWrapper::CalculixSolverWrapper(const Settings& settings, const Run
       settings.get_choice("interface_drive", "load", {"load", "displacement"}) == "displacement";
   if (displacement_drive_) {
     driven_dof_ = settings.get_int_in_range("driven_dof", 1, 1, 3);
+    driven_node_set_name_ = settings.get<std::string>("driven_node_set", node_set_name_);
     surface_stiffness_ = settings.required<double>("surface_stiffness");
     if (!(surface_stiffness_ > 0.0))
       settings.fail("surface_stiffness",
@@ -249,9 +250,14 @@ void CalculixSolverWrapper::read_deck() {
                            interface_nodes_.end());
     if (interface_nodes_.empty())
       throw calculix::DeckError("node set " + node_set_name_ + " is empty");
-    if (displacement_drive_)
-      drive_ = std::make_unique<calculix::DisplacementDrive>(*deck_, *loads_, interface_nodes_,
-                                                             driven_dof_, surface_stiffness_);
+    if (displacement_drive_) {
+      driven_node_set_ = deck_->node_set(driven_node_set_name_);
+      std::sort(driven_node_set_.begin(), driven_node_set_.end());
+      driven_node_set_.erase(std::unique(driven_node_set_.begin(), driven_node_set_.end()),
+                             driven_node_set_.end());
+      drive_ = std::make_unique<calculix::DisplacementDrive>(
+          *deck_, *loads_, interface_nodes_, driven_node_set_, driven_dof_, surface_stiffness_);
+    }
   } catch (const calculix::DeckError& e) {
     throw CaseError(input_file_where_ + ": solver '" + name_ + "': " + e.what());
   }
@@ -363,9 +369,9 @@ const Interface& CalculixSolverWrapper::solve(const Interface& input) {
     const RowMatrix displacement =
         calculix::read_node_print(results, "displacements", node_set_name_, interface_nodes_);
     output_interface_.values(node_set_name_, "displacement") =
-        drive_ ? drive_->balance(
-                     displacement,
-                     calculix::read_node_print(results, "forces", node_set_name_, interface_nodes_))
+        drive_ ? drive_->balance(displacement,
+                                 calculix::read_node_print(results, "forces", driven_node_set_name_,
+                                                           driven_node_set_))
                : displacement;
   } catch (const std::runtime_error& e) {
     fail(fmt::format("solver '{}' at {}: {}", name_, position(), e.what()));
@@ -434,7 +440,7 @@ void CalculixSolverWrapper::write_step(std::ofstream& out, const std::string& lo
   out << "*INCLUDE, INPUT=" << loads_file << "\n";
   if (print) out << "*NODE PRINT, NSET=" << node_set_name_ << ", GLOBAL=YES\nU\n";
   // The forces the driven nodes take, in their own systems (the driven direction's).
-  if (print && drive_) out << "*NODE PRINT, NSET=" << node_set_name_ << ", GLOBAL=NO\nRF\n";
+  if (print && drive_) out << "*NODE PRINT, NSET=" << driven_node_set_name_ << ", GLOBAL=NO\nRF\n";
   out << step.back().text << "\n";
 }
 

@@ -115,6 +115,8 @@ class CalculixSolverWrapper : public SolverWrapper {
   std::string state_reset_key_;
   bool displacement_drive_ = false;  ///< interface_drive: displacement
   int driven_dof_ = 1;
+  std::string driven_node_set_name_;  ///< the nodes that may be driven (default: the interface's)
+  std::vector<std::int64_t> driven_node_set_;
   double surface_stiffness_ = 0.0;
   std::string working_directory_where_, input_file_where_, executable_where_, state_reset_where_;
   RunSettings run_;

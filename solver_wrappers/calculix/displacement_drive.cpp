@@ -29,11 +29,13 @@ const std::vector<std::string>& DisplacementDrive::input_variables() {
 }
 
 DisplacementDrive::DisplacementDrive(const InputDeck& deck, const InterfaceLoads& loads,
-                                     std::vector<std::int64_t> interface_nodes, int dof,
+                                     std::vector<std::int64_t> interface_nodes,
+                                     std::vector<std::int64_t> drivable_nodes, int dof,
                                      double surface_stiffness)
     : deck_(deck),
       loads_(loads),
       interface_nodes_(std::move(interface_nodes)),
+      drivable_nodes_(std::move(drivable_nodes)),
       dof_(dof),
       surface_stiffness_(surface_stiffness) {
   for (const auto& face : loads_.faces()) {
@@ -86,7 +88,7 @@ void DisplacementDrive::plan(const FaceInputs& inputs) {
     driven_face_[static_cast<std::size_t>(f)] =
         inputs.coverage[f] >= kDrivenCoverage && inputs.gap[f] > 0.0;
   prescribed_.clear();
-  for (const auto node : interface_nodes_) {
+  for (const auto node : drivable_nodes_) {
     const auto found = faces_of_.find(node);
     if (found == faces_of_.end()) continue;
     const auto& faces_of_node = found->second;
@@ -130,9 +132,11 @@ double DisplacementDrive::share(std::int64_t node, std::size_t face) const {
 
 RowMatrix DisplacementDrive::balance(const RowMatrix& displacement,
                                      const RowMatrix& reaction) const {
-  std::map<std::int64_t, Eigen::Index> row_of;
+  std::map<std::int64_t, Eigen::Index> row_of, reaction_row_of;
   for (std::size_t i = 0; i < interface_nodes_.size(); ++i)
     row_of[interface_nodes_[i]] = static_cast<Eigen::Index>(i);
+  for (std::size_t i = 0; i < drivable_nodes_.size(); ++i)
+    reaction_row_of[drivable_nodes_[i]] = static_cast<Eigen::Index>(i);
   // The nodal imbalance along the driven direction: the other solver's force minus the force
   // the structure takes (its reaction). Elsewhere the structure takes what is applied.
   const auto film_forces = loads_.nodal_forces(inputs_.traction, inputs_.pressure);
@@ -140,7 +144,7 @@ RowMatrix DisplacementDrive::balance(const RowMatrix& displacement,
   for (const auto& [node, value] : prescribed_) {
     const auto film = film_forces.find(node);
     const double film_force = film == film_forces.end() ? 0.0 : film->second.dot(direction(node));
-    imbalance[node] = film_force - reaction(row_of.at(node), dof_ - 1);
+    imbalance[node] = film_force - reaction(reaction_row_of.at(node), dof_ - 1);
   }
   // Per driven face, the traction whose nodal forces a face's nodes share: each node's
   // imbalance split among its faces as a uniform traction's nodal force is. Exact for a
@@ -165,10 +169,12 @@ RowMatrix DisplacementDrive::balance(const RowMatrix& displacement,
   // A driven node moves by its faces' moves, weighted by its shares in them.
   RowMatrix result = displacement;
   for (const auto& [node, value] : prescribed_) {
+    const auto output = row_of.find(node);
+    if (output == row_of.end()) continue;  // driven, but not returned
     double step = 0.0;
     for (const auto f : faces_of_.at(node)) step += share(node, f) * move.at(f);
     const Eigen::Vector3d e = direction(node);
-    const Eigen::Index row = row_of.at(node);
+    const Eigen::Index row = output->second;
     result.row(row) += (value + step - result.row(row).dot(e.transpose())) * e.transpose();
   }
   return result;

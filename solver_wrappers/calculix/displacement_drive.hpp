@@ -37,12 +37,15 @@ class DisplacementDrive {
   /// The input variables this mode adds to pressure and traction (per interface face).
   static const std::vector<std::string>& input_variables();
 
-  /// `dof`: the driven direction (1..3, in a node's *TRANSFORM system if it has one);
-  /// `surface_stiffness`: the structure's stiffness per area against a push of its surface
-  /// (Pa/m). Throws DeckError for decks it cannot drive (axisymmetric elements on the
-  /// interface, *BOUNDARY inside the step).
+  /// `interface_nodes`: the nodes whose displacement the wrapper returns; `drivable_nodes`:
+  /// those that may be driven (all of the surface's: on a 3D sector, the interface node set
+  /// may be one side of it only); `dof`: the driven direction (1..3, in a node's *TRANSFORM
+  /// system if it has one); `surface_stiffness`: the structure's stiffness per area against a
+  /// push of its surface (Pa/m). Throws DeckError for decks it cannot drive (axisymmetric
+  /// elements on the interface, *BOUNDARY inside the step).
   DisplacementDrive(const InputDeck& deck, const InterfaceLoads& loads,
-                    std::vector<std::int64_t> interface_nodes, int dof, double surface_stiffness);
+                    std::vector<std::int64_t> interface_nodes,
+                    std::vector<std::int64_t> drivable_nodes, int dof, double surface_stiffness);
 
   /// This iteration's inputs (from the wrapper's input interface, one row per face).
   struct FaceInputs {
@@ -57,7 +60,7 @@ class DisplacementDrive {
   void write(std::ostream& out) const;
   /// The interface nodes' displacement to return (one row per interface node, global):
   /// ccx's `displacement`, with the driven direction of driven nodes replaced by the balanced
-  /// position; `reaction` holds ccx's RF per interface node in the nodes' own systems.
+  /// position; `reaction` holds ccx's RF per drivable node in the nodes' own systems.
   RowMatrix balance(const RowMatrix& displacement, const RowMatrix& reaction) const;
 
   std::size_t driven_nodes() const { return prescribed_.size(); }
@@ -73,7 +76,7 @@ class DisplacementDrive {
 
   const InputDeck& deck_;
   const InterfaceLoads& loads_;
-  std::vector<std::int64_t> interface_nodes_;
+  std::vector<std::int64_t> interface_nodes_, drivable_nodes_;
   int dof_;
   double surface_stiffness_;
   std::vector<std::string> model_boundary_;

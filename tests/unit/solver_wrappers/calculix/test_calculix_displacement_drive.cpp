@@ -93,6 +93,24 @@ TEST(CalculixDisplacementDrive, OneNewtonStepWithTheTrueStiffnessLandsOnTheSolut
     EXPECT_NEAR(halfway[i], 1.5 * u, 3e-4 * u) << "node " << stiff.nodes().ids[i];
 }
 
+// A sector whose interface node set is one side of the bore only (as an axisymmetric mapping
+// wants it): with driven_node_set the whole bore is driven, and the side is returned.
+TEST(CalculixDisplacementDrive, DrivesTheWholeSurfaceAndReturnsOneSide) {
+  const SectorCylinder model = cylinder();
+  std::string side = "*NSET, NSET=SIDE\n";
+  const int ni = 2 * model.radial + 1;
+  for (int k = 0; k <= 2 * model.axial; ++k) side += std::to_string(1 + 3 * ni * k) + ",\n";
+  std::string deck = model.deck();
+  deck.insert(deck.find("*MATERIAL"), side);
+  CalculixCase test;
+  test.start(deck, drive_keys() + "driven_node_set: INNERN\n", "INNER", "SIDE");
+  EXPECT_EQ(test.nodes().ids.size(), static_cast<std::size_t>(2 * model.axial + 1));
+  const double u = bore_displacement();
+  const Eigen::VectorXd radial = solve_radial(test, drive_inputs(test, 2 * u, kEveryFace));
+  for (Eigen::Index i = 0; i < radial.size(); ++i)
+    EXPECT_NEAR(radial[i], u, 2e-4 * u) << "node " << test.nodes().ids[i];
+}
+
 TEST(CalculixDisplacementDrive, PartlyCoveredSurfaceIsDrivenWhereCoveredAndLoadedElsewhere) {
   CalculixCase test;
   test.start(cylinder().deck(), drive_keys());
