@@ -76,7 +76,11 @@ def run_checks(case, p, refine, step=None):
     film_axial = forces["shear_axial"] + forces["pressure_axial"]
     results["force_balance_error_film"] = (pull - (wire["back_force"] - film_axial)) / pull
     summary = json.loads((case / "results" / "case.summary.json").read_text())
-    if results["step"] == results["steps"] and summary.get("status") in ("completed", "stalled"):
+    # (Read for the axisymmetric wire's loads file only: a sector's has other faces, and a wire
+    # driven by displacement takes nodal forces.)
+    axisymmetric = p["mesh"].get("wire_model", "axisymmetric") == "axisymmetric"
+    if (results["step"] == results["steps"] and summary.get("status") in ("completed", "stalled")
+            and axisymmetric):
         # The loads ccx applied in the last coupling iteration, on the wire's moved surface
         # (after a run that stopped, the loads file is of the step that failed).
         applied = wire_forces(case, frd)

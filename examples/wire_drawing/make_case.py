@@ -22,7 +22,7 @@ import sys
 import yaml
 
 HERE = pathlib.Path(__file__).resolve().parent
-TEXT_PARAMETERS = {"wire_element", "model", "type"}  # every other parameter is a number
+TEXT_PARAMETERS = {"wire_element", "wire_model", "model", "type", "drive"}  # others: numbers
 
 
 def load_parameters(path, changes):
@@ -225,12 +225,133 @@ def quad8(node, i, k):
     return ", ".join(str(node(a, b)) for a, b in ids)
 
 
+# C3D20 local nodes in the doubled grid (radial, hoop, axial offsets 0..2).
+HEX20 = [(0, 0, 0), (2, 0, 0), (2, 2, 0), (0, 2, 0), (0, 0, 2), (2, 0, 2), (2, 2, 2), (0, 2, 2),
+         (1, 0, 0), (2, 1, 0), (1, 2, 0), (0, 1, 0), (1, 0, 2), (2, 1, 2), (1, 2, 2), (0, 1, 2),
+         (0, 0, 1), (2, 0, 1), (2, 2, 1), (0, 2, 1)]
+# C3D15 at the axis: the triangle (axis, outer edge at hoop 0, outer edge at hoop 2) at both
+# axial ends, its mid-sides, then the axial mid-sides.
+WEDGE15 = [(0, 0, 0), (2, 0, 0), (2, 2, 0), (0, 0, 2), (2, 0, 2), (2, 2, 2), (1, 0, 0), (2, 1, 0),
+           (1, 2, 0), (1, 0, 2), (2, 1, 2), (1, 2, 2), (0, 0, 1), (2, 0, 1), (2, 2, 1)]
+
+
+def sector_wire_deck(p, refine):
+    """The wire as a thin 3D sector (mesh.sector_degrees) of the same grid as wire_deck's: C3D20R
+    bricks, C3D15 wedges in the ring at the axis, all off-axis nodes in a cylindrical *TRANSFORM
+    about the y axis (1 radial, 2 hoop, 3 axial) with the hoop displacement held: axisymmetric.
+    One side of the sector lies in the x-y plane (x = radius, y = axis, as the CAX deck), the
+    sector turns from it towards -z. Its reaction forces are the forces at the nodes, which a
+    CAX model's are not (reaction_probe.py): what interface_drive: displacement needs.
+    SURFACEN is the surface's nodes on the x-y side (the axisymmetric mapping's), SURFACEALL all
+    of them (the driven ones). Bricks as mesh.wire_element: C3D20R for CAX8R, C3D20 for CAX8
+    (full integration: driven uniformly around the hoop, C3D20R's surface is held against the
+    hoop zigzag its solution has under a load, and comes out stiffer; leaving the mid-plane
+    nodes free instead lets their zero-energy mode make ccx cut its increments back)."""
+    wire, mesh = p["wire"], p["mesh"]
+    factor = 2 if refine else 1
+    radial, axial = factor * mesh["wire_radial_elements"], factor * mesh["wire_axial_elements"]
+    if radial < 2:
+        sys.exit("make_case.py: the sector wire needs mesh.wire_radial_elements >= 2 (its "
+                 "surface faces are on bricks, the ring at the axis is of wedges)")
+    radius, length, start = wire["radius"], wire["length"], wire["start"]
+    angle = math.radians(mesh["sector_degrees"])
+    ni, nk = 2 * radial + 1, 2 * axial + 1
+
+    def node(i, j, k):
+        return 1 + i + ni * ((0 if i == 0 else j) + 3 * k)  # one node per axis point
+
+    def exists(i, j, k):
+        return i % 2 + j % 2 + k % 2 <= 1 and not (i == 0 and j > 0)
+
+    lines = [f"** The drawn wire (make_case.py): a {mesh['sector_degrees']:g} degree sector of "
+             "C3D20(R) (C3D15 at the axis), x = radius, y = axis, hoop towards -z.",
+             "*NODE, NSET=NALL"]
+    for k in range(nk):
+        for j in range(3):
+            for i in range(ni):
+                if exists(i, j, k):
+                    r, theta = radius * i / (ni - 1), angle * j / 2
+                    lines.append(f"{node(i, j, k)}, {r * math.cos(theta):.13g}, "
+                                 f"{start + length * k / (nk - 1):.13g}, "
+                                 f"{-r * math.sin(theta):.13g}")
+
+    def element(m, q):
+        return 1 + m + radial * q
+
+    def connectivity(table, m, q):
+        ids = [str(node(2 * m + a, b, 2 * q + c)) for a, b, c in table]
+        # ccx reads at most 16 entries a line (the element number is the first).
+        return ", ".join([str(element(m, q))] + ids[:15]) + (",\n" + ", ".join(ids[15:])
+                                                              if len(ids) > 15 else "")
+
+    lines.append("*ELEMENT, TYPE=C3D15, ELSET=EALL")
+    lines.extend(connectivity(WEDGE15, 0, q) for q in range(axial))
+    brick = {"CAX8R": "C3D20R", "CAX8": "C3D20"}[mesh["wire_element"]]
+    lines.append(f"*ELEMENT, TYPE={brick}, ELSET=EALL")
+    lines.extend(connectivity(HEX20, m, q) for q in range(axial) for m in range(1, radial))
+
+    def node_set(name, nodes):
+        lines.append(f"*NSET, NSET={name}")
+        lines.extend(f"{n}," for n in nodes)
+
+    node_set("SURFACEN", [node(ni - 1, 0, k) for k in range(nk)])
+    node_set("SURFACEALL", [node(ni - 1, j, k) for k in range(nk) for j in range(3)
+                            if exists(ni - 1, j, k)])
+    node_set("AXIS", [node(0, 0, k) for k in range(nk)])
+    node_set("OFFAXIS", [node(i, j, k) for k in range(nk) for j in range(3)
+                         for i in range(1, ni) if exists(i, j, k)])
+    node_set("EXIT", [node(i, j, nk - 1) for j in range(3) for i in range(1, ni)
+                      if exists(i, j, nk - 1)])
+    node_set("EXITAXIS", [node(0, 0, nk - 1)])
+    lines.append("*SURFACE, NAME=SURFACE, TYPE=ELEMENT")  # r = R: face S4 (xi = 1)
+    lines.extend(f"{element(radial - 1, q)}, S4" for q in range(axial))
+    lines.append("*ELSET, ELSET=SKIN")
+    lines.extend(f"{element(radial - 1, q)}," for q in range(axial))
+    lines.append("*ELSET, ELSET=ENTRY")  # y min: face S1 of bricks and wedges alike
+    lines.extend(f"{element(m, 0)}," for m in range(radial))
+    lines += ["*TRANSFORM, NSET=OFFAXIS, TYPE=C", "0., 0., 0., 0., 1., 0."]
+    lines += material_and_step(p, [
+        "** Axisymmetric: no hoop displacement; the axis stays on the axis.",
+        "*BOUNDARY", "OFFAXIS, 2, 2", "AXIS, 1, 1", "AXIS, 3, 3",
+        "** The exit end held axially (local 3 off the axis, global y on it).",
+        "EXIT, 3, 3", "EXITAXIS, 2, 2"])
+    return "\n".join(lines) + "\n"
+
+
+def material_and_step(p, boundary):
+    """The wire's material, `boundary` and its step (both wire decks)."""
+    wire, time = p["wire"], p["time"]
+    tension = wire["back_force"] / (math.pi * wire["radius"] ** 2)
+    lines = ["*MATERIAL, NAME=STEEL", "*ELASTIC", f"{wire['young']:.13g}, {wire['poisson']:.13g}",
+             "*DENSITY", f"{wire['density']:.13g}", "*PLASTIC"]
+    lines.extend(f"{stress:.13g}, {strain:.13g}" for stress, strain in hardening_table(wire))
+    lines += ["*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL",
+              "** The wire is described in a frame that moves with its exit end at the drawing",
+              "** speed (case.yaml: frame_velocity), so the exit end is held here."]
+    lines += boundary
+    lines += ["** Quasi-static: inertia is below 1e-2 of the stresses (docs/wire-drawing.md).",
+              "** A step that needs more increments than INC gives up: the coupler steps back.",
+              f"*STEP, NLGEOM, INC={p['calculix']['max_increments']}", "*STATIC",
+              f"{time['delta_t']:.13g}, {time['delta_t']:.13g}, {time['delta_t'] * 1e-6:.13g}, "
+              f"{time['delta_t']:.13g}",
+              "** The back force: a uniform tension on the entry end (a negative pressure).",
+              "*DLOAD", f"ENTRY, P1, {-tension:.13g}",
+              "** Newton's tolerances: largest residual force / mean force, largest correction /",
+              "** the increment's largest displacement (ccx's defaults: 0.005, 0.01).",
+              "*CONTROLS, PARAMETERS=FIELD",
+              f"{p['calculix']['residual_tolerance']:g}, {p['calculix']['correction_tolerance']:g}",
+              "*NODE FILE", "U, RF", "*EL FILE", "S, PEEQ",
+              "** Stresses at the integration points, for the check against the yield stress",
+              "*EL PRINT, ELSET=SKIN", "S, PEEQ", "*END STEP"]
+    return lines
+
+
 def wire_deck(p, refine):
     """The wire as CAX8 or CAX8R elements (x = radius, y = axis): radial x axial elements of
     equal size, its whole outer surface the interface (the wire slides: any part of it may be
     under the film), in a frame that moves with its exit end (y max) at the drawing speed, so
     that end is held; the back force as a uniform tension on the entry end (y min)."""
-    wire, time = p["wire"], p["time"]
+    wire = p["wire"]
     factor = 2 if refine else 1
     radial = factor * p["mesh"]["wire_radial_elements"]
     axial = factor * p["mesh"]["wire_axial_elements"]
@@ -271,28 +392,7 @@ def wire_deck(p, refine):
     lines.extend(f"{element(radial - 1, q)}," for q in range(axial))
     lines.append("*ELSET, ELSET=ENTRY")  # y min: edge S1 (nodes 1-2)
     lines.extend(f"{element(m, 0)}," for m in range(radial))
-    lines += ["*MATERIAL, NAME=STEEL", "*ELASTIC", f"{wire['young']:.13g}, {wire['poisson']:.13g}",
-              "*DENSITY", f"{wire['density']:.13g}", "*PLASTIC"]
-    lines.extend(f"{stress:.13g}, {strain:.13g}" for stress, strain in hardening_table(wire))
-    tension = wire["back_force"] / (math.pi * radius ** 2)
-    lines += ["*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL",
-              "** The wire is described in a frame that moves with its exit end at the drawing",
-              "** speed (case.yaml: frame_velocity), so the exit end is held here.",
-              "*BOUNDARY", "AXIS, 1, 1", "EXIT, 2, 2",
-              "** Quasi-static: inertia is below 1e-2 of the stresses (docs/wire-drawing.md).",
-              "** A step that needs more increments than INC gives up: the coupler steps back.",
-              f"*STEP, NLGEOM, INC={p['calculix']['max_increments']}", "*STATIC",
-              f"{time['delta_t']:.13g}, {time['delta_t']:.13g}, {time['delta_t'] * 1e-6:.13g}, "
-              f"{time['delta_t']:.13g}",
-              "** The back force: a uniform tension on the entry end (a negative pressure).",
-              "*DLOAD", f"ENTRY, P1, {-tension:.13g}",
-              "** Newton's tolerances: largest residual force / mean force, largest correction /",
-              "** the increment's largest displacement (ccx's defaults: 0.005, 0.01).",
-              "*CONTROLS, PARAMETERS=FIELD",
-              f"{p['calculix']['residual_tolerance']:g}, {p['calculix']['correction_tolerance']:g}",
-              "*NODE FILE", "U, RF", "*EL FILE", "S, PEEQ",
-              "** Stresses at the integration points, for the check against the yield stress",
-              "*EL PRINT, ELSET=SKIN", "S, PEEQ", "*END STEP"]
+    lines += material_and_step(p, ["*BOUNDARY", "AXIS, 1, 1", "EXIT, 2, 2"])
     return "\n".join(lines) + "\n"
 
 
@@ -367,7 +467,7 @@ def solver_wrappers(p, prefix):
     name: {name}film
     working_directory: {prefix}fluid
     boundary_names: [wire]
-    timeout: 600
+{film_drive_keys(p)}    timeout: 600
   - type: mapped                  # S: the loads -> the wire's surface displacement
     name: {name}wire
     coordinates: current          # a sliding interface: map on the current positions ...
@@ -380,7 +480,7 @@ def solver_wrappers(p, prefix):
       interface_surface: SURFACE
       interface_node_set: SURFACEN
       threads: {p['calculix']['threads']}                    # the film waits while the wire is solved
-      timeout: 600
+{wire_drive_keys(p)}      timeout: 600
     input_mapper:                 # film faces (axis z, radial y) -> wire faces (r, axis)
       type: overlap               # each wire face: the length-weighted mean of the film faces it
       directions: [y]             # overlaps along the axis, so the film's load is conserved; zero
@@ -396,6 +496,43 @@ def solver_wrappers(p, prefix):
       transformers:
         - {{type: axisymmetric_2d_to_3d, direction_axial: y, direction_radial: x, angle: {p['mesh']['wedge_degrees']:.17g}}}
         - {{type: permutation, permutation: [2, 0, 1]}}   # (r, axis, third) -> film (third, r, axis)
+"""
+
+
+def displacement_driven(p):
+    """coupling.drive: displacement (the wire under the film driven by its wall position)."""
+    drive = p["coupling"]["drive"]
+    if drive not in ("load", "displacement"):
+        sys.exit(f"make_case.py: coupling.drive: '{drive}' is not load or displacement")
+    if drive == "displacement" and p["mesh"]["wire_model"] != "sector":
+        sys.exit("make_case.py: coupling.drive: displacement needs mesh.wire_model: sector "
+                 "(ccx's reactions on an axisymmetric model are not the nodal forces)")
+    return drive == "displacement"
+
+
+def surface_stiffness(p):
+    """The wire's stiffness per area against a push of its surface (coupling.surface_stiffness,
+    0: that of an elastic half-space under the shortest wave its surface mesh carries, a node
+    in, a node out: pi E / ((1 - nu^2) l), l the length of a face along the axis)."""
+    given = p["coupling"]["surface_stiffness"]
+    if given > 0:
+        return given
+    wire, face = p["wire"], p["wire"]["length"] / p["mesh"]["wire_axial_elements"]
+    return math.pi * wire["young"] / ((1 - wire["poisson"] ** 2) * face)
+
+
+def film_drive_keys(p):
+    if not displacement_driven(p):
+        return ""
+    return "    gap_patch: die                # the film's gap and wall position, for the wire\n"
+
+
+def wire_drive_keys(p):
+    if not displacement_driven(p):
+        return ""
+    return f"""      interface_drive: displacement # the surface under the film driven by its wall position
+      driven_node_set: SURFACEALL   # all of the sector's surface (SURFACEN: its x-y side)
+      surface_stiffness: {surface_stiffness(p):.6g}   # Pa/m, the Newton step's wire stiffness
 """
 
 
@@ -416,7 +553,11 @@ def write_solvers(p, refine, output):
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(text)
     (output / "structure").mkdir(parents=True, exist_ok=True)
-    (output / "structure" / "wire.inp").write_text(wire_deck(p, refine))
+    model = p["mesh"]["wire_model"]
+    if model not in ("axisymmetric", "sector"):
+        sys.exit(f"make_case.py: mesh.wire_model: '{model}' is not axisymmetric or sector")
+    deck = sector_wire_deck(p, refine) if model == "sector" else wire_deck(p, refine)
+    (output / "structure" / "wire.inp").write_text(deck)
     return film
 
 

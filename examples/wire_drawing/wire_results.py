@@ -118,12 +118,20 @@ def surface(frd, wire, time):
             "yield_stress": swift_yield_stress(wire, peeq)[order], "peeq": peeq[order]}
 
 
+def sector_angle(frd):
+    """The opening of a sector model of the wire in radians (its nodes turn from the x-y plane
+    towards -z, make_case.sector_wire_deck), 0 for the axisymmetric model."""
+    return float(np.max(np.arctan2(-frd.coordinates[:, 2], frd.coordinates[:, 0])))
+
+
 def exit_force(frd, wire):
     """The axial reaction force at the exit end, the drawing force (ccx gives an axisymmetric
-    model's reaction forces for the whole circumference)."""
+    model's reaction forces for the whole circumference; a sector's are scaled to it)."""
     end = wire["start"] + wire["length"]
     at_exit = np.abs(frd.coordinates[:, 1] - end) < 1e-9
-    return float(np.sum(frd.values("FORC")[at_exit, 1]))
+    angle = sector_angle(frd)
+    ring = 2 * np.pi / angle if angle > 1e-9 else 1.0
+    return ring * float(np.sum(frd.values("FORC")[at_exit, 1]))
 
 
 def step_files(case):

@@ -146,21 +146,27 @@ RowMatrix DisplacementDrive::balance(const RowMatrix& displacement,
     const double film_force = film == film_forces.end() ? 0.0 : film->second.dot(direction(node));
     imbalance[node] = film_force - reaction(reaction_row_of.at(node), dof_ - 1);
   }
-  // Per driven face, the traction whose nodal forces a face's nodes share: each node's
-  // imbalance split among its faces as a uniform traction's nodal force is. Exact for a
-  // uniform traction, the totals kept, and blind to a pattern whose shares cancel on every
-  // face (a reduced-integration element's hoop zigzag, which a least-squares fit to the
-  // consistent nodal forces would take for a traction).
+  // Per driven face, the traction whose nodal forces a face's driven nodes share: each node's
+  // imbalance split among its faces as a uniform traction's nodal force is, over the weight of
+  // the face's driven nodes (its area when all are driven; undriven nodes carry the film's
+  // load and have none). Exact for a uniform traction, and blind to a pattern whose shares
+  // cancel on every face (a reduced-integration element's hoop zigzag, which a least-squares
+  // fit to the consistent nodal forces would take for a traction).
   std::map<std::size_t, double> move;
   largest_imbalance_ = 0.0;
   for (std::size_t f = 0; f < driven_face_.size(); ++f) {
     if (!driven_face_[f]) continue;
-    double force = 0.0;
-    for (const auto node : loads_.geometry()[f].nodes) {
-      const auto at = imbalance.find(node);
-      if (at != imbalance.end()) force += at->second * share(node, f);
+    const auto& face = loads_.geometry()[f];
+    double force = 0.0, weight = 0.0;
+    for (std::size_t i = 0; i < face.nodes.size(); ++i) {
+      const auto at = imbalance.find(face.nodes[i]);
+      if (at == imbalance.end()) continue;
+      force += at->second * share(face.nodes[i], f);
+      weight += face.weights[static_cast<Eigen::Index>(i)];
     }
-    const double traction = force / loads_.geometry()[f].area;
+    // Too little of the face driven to tell its traction (its corners alone, whose
+    // serendipity weights are negative): it does not move.
+    const double traction = weight > 0.1 * face.area ? force / weight : 0.0;
     const auto row = static_cast<Eigen::Index>(f);
     const double film_stiffness = std::max(0.0, 2.0 * inputs_.pressure[row] / inputs_.gap[row]);
     move[f] = traction / (film_stiffness + surface_stiffness_);

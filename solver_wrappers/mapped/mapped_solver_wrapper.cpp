@@ -170,11 +170,19 @@ class MappedSolverWrapper : public SolverWrapper {
                       pair.outer_output_part);
       if (current_ && !has_displacement(inner_->input_interface(), pair.inner_input_part) &&
           has_displacement(inner_->output_interface(), pair.inner_output_part)) {
+        // Any distance: the faces of a thin 3D sector lie off the side its output nodes are
+        // on (the wire drawing case's sector), beyond the interpolator's default tolerance.
+        const Coordinates nodes =
+            initial_coordinates(inner_->output_interface(), pair.inner_output_part);
+        const Coordinates faces =
+            initial_coordinates(inner_->input_interface(), pair.inner_input_part);
+        Coordinates both(nodes.rows() + faces.rows(), 3);
+        both << nodes, faces;
+        const double extent = (both.colwise().maxCoeff() - both.colwise().minCoeff()).norm() + 1.0;
         pair.follow_output = std::make_unique<Mapper>(
-            Settings::load_string("type: nearest", "(the faces follow their nodes)"));
-        pair.follow_output->initialize(
-            initial_coordinates(inner_->output_interface(), pair.inner_output_part),
-            initial_coordinates(inner_->input_interface(), pair.inner_input_part));
+            Settings::load_string(fmt::format("{{type: nearest, max_distance: {:.17g}}}", extent),
+                                  "(the faces follow their nodes)"));
+        pair.follow_output->initialize(nodes, faces);
       }
       pairs_.push_back(std::move(pair));
     }

@@ -20,9 +20,10 @@ constexpr double kRadius = 0.75e-3, kLength = 30e-3, kStart = -20e-3;
 constexpr double kBackForce = 100.0, kYoung = 177e9, kPoisson = 0.3;
 constexpr double kDeltaT = 1e-4;
 
-TEST(WireDrawingStructure, TheWireAloneIsABarInUniformTension) {
+/// The wire of make_case.py `arguments` (axial elements `axial`) in uniform tension.
+void expect_bar_in_uniform_tension(const std::string& arguments, int axial) {
   testing::TemporaryDirectory directory;
-  testing::write_wire_drawing_case(directory.path(), "", /*mesh_film=*/false);
+  testing::write_wire_drawing_case(directory.path(), arguments, /*mesh_film=*/false);
   auto wire = testing::initialized_wrapper(
       "type: calculix\nname: wire\nworking_directory: structure\ninput_file: wire.inp\n"
       "interface_surface: SURFACE\ninterface_node_set: SURFACEN\nsave_results: false\n",
@@ -37,7 +38,7 @@ TEST(WireDrawingStructure, TheWireAloneIsABarInUniformTension) {
     wire->finalize_step();
     const auto& points = displacement.parts()[0].model_part->coordinates;  // x = r, y = z
     const Eigen::MatrixXd u = displacement.values("SURFACEN", "displacement");
-    ASSERT_EQ(points.rows(), 2 * 306 + 1);
+    ASSERT_EQ(points.rows(), 2 * axial + 1);
     double axial = 0.0, radial = 0.0;
     for (Eigen::Index i = 0; i < points.rows(); ++i) {
       const double expected = -strain * (kStart + kLength - points(i, 1));
@@ -50,6 +51,20 @@ TEST(WireDrawingStructure, TheWireAloneIsABarInUniformTension) {
     std::printf("step %d: axial difference %.3g m, radial %.3g m\n", step, axial, radial);
   }
   wire->finalize();
+}
+
+TEST(WireDrawingStructure, TheWireAloneIsABarInUniformTension) {
+  expect_bar_in_uniform_tension("", 306);
+}
+
+// The wire as a 1 degree 3D sector (C3D20R, C3D15 at the axis, cylindrical *TRANSFORM, hoop
+// held; mesh.wire_model: sector, what coupling.drive: displacement needs), on the coarse grid:
+// the same bar, its x-y side returned.
+TEST(WireDrawingStructure, TheSectorWireIsTheSameBar) {
+  expect_bar_in_uniform_tension(
+      "--set mesh.wire_model=sector --set mesh.wire_radial_elements=4 "
+      "--set mesh.wire_axial_elements=153",
+      153);
 }
 
 }  // namespace
