@@ -7,6 +7,9 @@
 // current positions (initial coordinates plus the latest displacement each side knows of) every
 // time step or every coupling iteration (`rebuild`).
 //
+// `input_mapper` is one mapper for every input model part pair, or a list of one per pair (a
+// structure that takes loads on its faces and a position at its nodes needs two kinds).
+//
 // `coverage`: an inner solver that takes this variable, which the other side does not give,
 // receives the input mapper applied to ones (how much of each of its faces the other side
 // covers: the calculix wrapper driven by displacement under a film needs it).
@@ -36,7 +39,10 @@ class MappedSolverWrapper : public SolverWrapper {
   MappedSolverWrapper(const Settings& settings, const RunSettings& run)
       : inner_(SolverWrapperRegistry::instance().create(settings.child("solver_wrapper"), run)),
         name_(settings.get_name("name", inner_->name())),
-        input_settings_(settings.child("input_mapper")),
+        input_settings_(settings.node()["input_mapper"].IsSequence()
+                            ? settings.list("input_mapper")
+                            : std::vector<Settings>{settings.child("input_mapper")}),
+        input_where_(settings.where("input_mapper")),
         output_settings_(settings.child("output_mapper")),
         rebuild_(settings.get_choice("rebuild", "never", {"never", "time_step", "iteration"})),
         current_(settings.get_choice("coordinates", "initial", {"initial", "current"}) ==
@@ -45,7 +51,9 @@ class MappedSolverWrapper : public SolverWrapper {
         time_(run.timestep_start * run.delta_t) {
     if (settings.has("name")) inner_->set_default_name(name_);
     // Build one mapper now so that `cocopp check` validates the mapper settings.
-    Mapper{input_settings_};
+    if (input_settings_.empty())
+      settings.fail("input_mapper", "give a mapper, or a list of one per input model part pair");
+    for (const auto& input : input_settings_) Mapper{input};
     Mapper{output_settings_};
     read_frame_velocity(settings);
   }
@@ -82,13 +90,12 @@ class MappedSolverWrapper : public SolverWrapper {
     if (rebuild_ == "iteration") build_mappers();
     const auto start = Clock::now();
     Interface inner_input = inner_->input_interface();
-    for (const auto& pair : pairs_)
-      for (const auto& variable : variables_of(inner_input, pair.inner_input_part))
-        inner_input.values(pair.inner_input_part, variable) =
-            is_coverage(variable, pair)
-                ? pair.input_mapper->map(
-                      RowMatrix::Ones(initial_coordinates(input_, pair.outer_input_part).rows(), 1))
-                : pair.input_mapper->map(input_.values(pair.outer_input_part, variable));
+    for (const auto& pair : input_pairs_)
+      for (const auto& variable : variables_of(inner_input, pair.inner))
+        inner_input.values(pair.inner, variable) =
+            is_coverage(variable, pair) ? pair.mapper->map(RowMatrix::Ones(
+                                              initial_coordinates(input_, pair.outer).rows(), 1))
+                                        : pair.mapper->map(input_.values(pair.outer, variable));
     map_seconds_ += seconds_since(start);
     const Interface& inner_output = inner_->solve(inner_input);
     const auto output_start = Clock::now();
@@ -121,14 +128,22 @@ class MappedSolverWrapper : public SolverWrapper {
     return std::chrono::duration<double>(Clock::now() - start).count();
   }
 
-  /// The i-th model part of the coupler side maps to the i-th of the inner solver.
-  struct Pair {
-    std::string outer_input_part, inner_input_part, inner_output_part, outer_output_part;
-    std::unique_ptr<Mapper> input_mapper, output_mapper;
+  /// The i-th input model part of the coupler side maps to the i-th of the inner solver (with
+  /// the i-th input mapper, or the one for all), the j-th output part of the inner solver to the
+  /// j-th of the coupler side.
+  struct InputPair {
+    std::string outer, inner;
+    std::unique_ptr<Mapper> mapper;
     /// Where the inner input part (e.g. a structure's faces) has no displacement of its own:
-    /// its points take that of the nearest point of the inner output part (its nodes), so
-    /// that with `coordinates: current` the faces move with the body.
+    /// its points take that of the nearest point of an inner output part (its nodes: the i-th,
+    /// or the last if there are fewer), so that with `coordinates: current` the faces move
+    /// with the body.
+    std::string follow_part;
     std::unique_ptr<Mapper> follow_output;
+  };
+  struct OutputPair {
+    std::string inner, outer;
+    std::unique_ptr<Mapper> mapper;
   };
 
   static std::vector<std::string> part_names(const Interface& interface) {
@@ -148,34 +163,38 @@ class MappedSolverWrapper : public SolverWrapper {
     const auto outer_in = part_names(input_), outer_out = part_names(output_);
     const auto inner_in = part_names(inner_->input_interface());
     const auto inner_out = part_names(inner_->output_interface());
-    if (outer_in.size() != inner_in.size() || outer_out.size() != inner_out.size() ||
-        outer_in.size() != outer_out.size())
+    if (outer_in.size() != inner_in.size() || outer_out.size() != inner_out.size())
       throw std::runtime_error(fmt::format(
           "mapped solver '{}': the other solver's interface has {} input and {} output model "
           "parts, '{}' has {} and {}: model parts are mapped pairwise, in order",
           name_, outer_in.size(), outer_out.size(), inner_->name(), inner_in.size(),
           inner_out.size()));
-    pairs_.clear();
-    for (std::size_t i = 0; i < outer_in.size(); ++i) {
-      Pair pair{outer_in[i],
-                inner_in[i],
-                inner_out[i],
-                outer_out[i],
-                std::make_unique<Mapper>(input_settings_),
-                std::make_unique<Mapper>(output_settings_),
-                nullptr};
-      check_variables(input_, pair.outer_input_part, inner_->input_interface(),
-                      pair.inner_input_part);
-      check_variables(inner_->output_interface(), pair.inner_output_part, output_,
-                      pair.outer_output_part);
-      if (current_ && !has_displacement(inner_->input_interface(), pair.inner_input_part) &&
-          has_displacement(inner_->output_interface(), pair.inner_output_part)) {
+    if (input_settings_.size() > 1 && input_settings_.size() != inner_in.size())
+      throw std::runtime_error(fmt::format(
+          "{}: mapped solver '{}': {} input mappers for {} input model part pairs ({}): give "
+          "one per pair, in order, or one mapper for all",
+          input_where_, name_, input_settings_.size(), inner_in.size(), fmt::join(inner_in, ", ")));
+    input_pairs_.clear();
+    output_pairs_.clear();
+    for (std::size_t j = 0; j < inner_out.size(); ++j) {
+      output_pairs_.push_back(
+          {inner_out[j], outer_out[j], std::make_unique<Mapper>(output_settings_)});
+      check_variables(inner_->output_interface(), inner_out[j], output_, outer_out[j]);
+    }
+    for (std::size_t i = 0; i < inner_in.size(); ++i) {
+      InputPair pair{
+          outer_in[i], inner_in[i],
+          std::make_unique<Mapper>(input_settings_[std::min(i, input_settings_.size() - 1)]),
+          inner_out.empty() ? std::string() : inner_out[std::min(i, inner_out.size() - 1)],
+          nullptr};
+      check_variables(input_, pair.outer, inner_->input_interface(), pair.inner);
+      if (current_ && !pair.follow_part.empty() &&
+          !has_displacement(inner_->input_interface(), pair.inner) &&
+          has_displacement(inner_->output_interface(), pair.follow_part)) {
         // Any distance: the faces of a thin 3D sector lie off the side its output nodes are
         // on (the wire drawing case's sector), beyond the interpolator's default tolerance.
-        const Coordinates nodes =
-            initial_coordinates(inner_->output_interface(), pair.inner_output_part);
-        const Coordinates faces =
-            initial_coordinates(inner_->input_interface(), pair.inner_input_part);
+        const Coordinates nodes = initial_coordinates(inner_->output_interface(), pair.follow_part);
+        const Coordinates faces = initial_coordinates(inner_->input_interface(), pair.inner);
         Coordinates both(nodes.rows() + faces.rows(), 3);
         both << nodes, faces;
         const double extent = (both.colwise().maxCoeff() - both.colwise().minCoeff()).norm() + 1.0;
@@ -184,15 +203,15 @@ class MappedSolverWrapper : public SolverWrapper {
                                   "(the faces follow their nodes)"));
         pair.follow_output->initialize(nodes, faces);
       }
-      pairs_.push_back(std::move(pair));
+      input_pairs_.push_back(std::move(pair));
     }
   }
 
   /// `coverage`, which the inner solver takes and the other side does not give: the input
   /// mapper applied to ones, the fraction of each inner point's share that the other side's
   /// interface covers (1 inside it, 0 outside, between on the faces across its edge).
-  bool is_coverage(const std::string& variable, const Pair& pair) const {
-    const auto given = variables_of(input_, pair.outer_input_part);
+  bool is_coverage(const std::string& variable, const InputPair& pair) const {
+    const auto given = variables_of(input_, pair.outer);
     return variable == "coverage" && std::find(given.begin(), given.end(), variable) == given.end();
   }
 
@@ -237,10 +256,10 @@ class MappedSolverWrapper : public SolverWrapper {
 
   /// Initial coordinates of a model part, plus the latest displacement that either interface
   /// of that side holds for it if `coordinates: current` (for an inner input part without
-  /// one: its nodes', see Pair::follow_output), plus the frame's motion for the inner solver's
+  /// one: its nodes', see InputPair::follow_output), plus the frame's motion for the inner solver's
   /// parts.
   Coordinates coordinates(const std::string& part, const Interface& a, const Interface& b,
-                          bool inner, const Pair* pair = nullptr) const {
+                          bool inner, const InputPair* pair = nullptr) const {
     Coordinates points;
     bool displaced = false;
     for (const Interface* interface : {&a, &b})
@@ -254,7 +273,7 @@ class MappedSolverWrapper : public SolverWrapper {
       }
     if (!displaced && pair && pair->follow_output)
       points += pair->follow_output->map(
-          inner_->output_interface().values(pair->inner_output_part, "displacement"));
+          inner_->output_interface().values(pair->follow_part, "displacement"));
     if (inner) points.rowwise() += frame_offset();
     return points;
   }
@@ -286,16 +305,15 @@ class MappedSolverWrapper : public SolverWrapper {
   void build_mappers_on_current_positions() {
     const Interface& inner_in = inner_->input_interface();
     const Interface& inner_out = inner_->output_interface();
-    for (auto& pair : pairs_) {
-      pair.input_mapper->initialize(
-          coordinates(pair.outer_input_part, input_, output_, false),
-          coordinates(pair.inner_input_part, inner_in, inner_out, true, &pair));
-      pair.output_mapper->initialize(coordinates(pair.inner_output_part, inner_out, inner_in, true),
-                                     coordinates(pair.outer_output_part, output_, input_, false));
-      if (report_) {
-        report("input", pair.outer_input_part, pair.inner_input_part, *pair.input_mapper);
-        report("output", pair.inner_output_part, pair.outer_output_part, *pair.output_mapper);
-      }
+    for (auto& pair : input_pairs_) {
+      pair.mapper->initialize(coordinates(pair.outer, input_, output_, false),
+                              coordinates(pair.inner, inner_in, inner_out, true, &pair));
+      if (report_) report("input", pair.outer, pair.inner, *pair.mapper);
+    }
+    for (auto& pair : output_pairs_) {
+      pair.mapper->initialize(coordinates(pair.inner, inner_out, inner_in, true),
+                              coordinates(pair.outer, output_, input_, false));
+      if (report_) report("output", pair.inner, pair.outer, *pair.mapper);
     }
   }
 
@@ -311,18 +329,20 @@ class MappedSolverWrapper : public SolverWrapper {
   }
 
   void map_output(const Interface& inner_output) {
-    for (const auto& pair : pairs_)
-      for (const auto& variable : variables_of(output_, pair.outer_output_part)) {
-        RowMatrix values = inner_output.values(pair.inner_output_part, variable);
+    for (const auto& pair : output_pairs_)
+      for (const auto& variable : variables_of(output_, pair.outer)) {
+        RowMatrix values = inner_output.values(pair.inner, variable);
         if (variable == "displacement" && values.cols() == 3)
           values.rowwise() += frame_offset();  // the other solver sees the frame's motion
-        output_.values(pair.outer_output_part, variable) = pair.output_mapper->map(values);
+        output_.values(pair.outer, variable) = pair.mapper->map(values);
       }
   }
 
   std::unique_ptr<SolverWrapper> inner_;
   std::string name_;
-  Settings input_settings_, output_settings_;
+  std::vector<Settings> input_settings_;
+  std::string input_where_;
+  Settings output_settings_;
   std::string rebuild_;
   bool current_;
   bool report_;
@@ -331,7 +351,8 @@ class MappedSolverWrapper : public SolverWrapper {
   double build_seconds_ = 0.0, map_seconds_ = 0.0;  ///< for the line at the end of the run
   int builds_ = 0, solves_ = 0;
   Interface input_, output_;
-  std::vector<Pair> pairs_;
+  std::vector<InputPair> input_pairs_;
+  std::vector<OutputPair> output_pairs_;
 };
 
 }  // namespace

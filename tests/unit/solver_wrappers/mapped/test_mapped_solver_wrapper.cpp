@@ -28,13 +28,22 @@ double fluid_pressure(double z) {
   return 1.0 + z * z;
 }
 
-/// The fixed fluid side: 201 points on z in [0, 1], gives pressure, takes displacement.
+/// The fixed fluid side: 201 points on z in [0, 1], gives pressure, takes displacement. With
+/// `second_part`, it also gives twice the pressure on a second model part of 101 points.
 class Fluid : public SolverWrapper {
  public:
-  Fluid() {
+  explicit Fluid(bool second_part = false) {
     auto part = line("fluid", 201, 0.0, 1.0);
     input_ = Interface({{part, {"displacement"}}});
-    output_ = Interface({{part, {"pressure"}}});
+    if (second_part) {
+      auto other = line("fluid_b", 101, 0.0, 1.0);
+      output_ = Interface({{part, {"pressure"}}, {other, {"pressure"}}});
+      auto p = output_.values("fluid_b", "pressure");
+      for (Eigen::Index i = 0; i < p.rows(); ++i)
+        p(i, 0) = 2 * fluid_pressure(other->coordinates(i, 2));
+    } else {
+      output_ = Interface({{part, {"pressure"}}});
+    }
     auto p = output_.values("fluid", "pressure");
     for (Eigen::Index i = 0; i < p.rows(); ++i) p(i, 0) = fluid_pressure(part->coordinates(i, 2));
   }
@@ -68,7 +77,10 @@ class TranslatingWire : public SolverWrapper {
         settings.get<bool>("faces", false) ? line("faces", 40, -0.5 + 0.0125, 0.5 - 0.0125) : nodes;
     std::vector<std::string> inputs = {"pressure"};
     if (settings.get<bool>("coverage", false)) inputs.push_back("coverage");
-    input_ = Interface({{faces, inputs}});
+    if (settings.get<bool>("second_input", false))  // two input parts, one output part
+      input_ = Interface({{faces, inputs}, {line("wire_b", 41, -0.5, 0.5), {"pressure"}}});
+    else
+      input_ = Interface({{faces, inputs}});
     output_ = Interface({{nodes, {"displacement"}}});
     last = this;
   }
@@ -79,6 +91,7 @@ class TranslatingWire : public SolverWrapper {
   void initialize_step(int step, double) override { step_ = step; }
   const Interface& solve(const Interface& input) override {
     received = input.values(input.parts()[0].model_part->name, "pressure");
+    if (input.parts().size() > 1) received_b = input.values("wire_b", "pressure");
     const auto& variables = input.parts()[0].variables;
     if (std::find(variables.begin(), variables.end(), "coverage") != variables.end())
       coverage = input.values(input.parts()[0].model_part->name, "coverage");
@@ -92,7 +105,7 @@ class TranslatingWire : public SolverWrapper {
   void finalize() override {}
 
   static inline TranslatingWire* last = nullptr;
-  RowMatrix received, coverage;
+  RowMatrix received, received_b, coverage;
 
  private:
   std::string name_;
@@ -183,6 +196,54 @@ TEST(MappedWrapper, CoverageIsTheMappedOne) {
   for (Eigen::Index i = 0; i < z.size(); ++i) {
     const double expected = std::clamp((z(i) + 0.0125 + 0.0025) / 0.025, 0.0, 1.0);
     EXPECT_NEAR(fraction(i, 0), expected, 1e-12) << "z " << z(i);
+  }
+}
+
+// Two input model parts and one output part, with an input mapper each: each part gets its
+// counterpart's load through its own mapper.
+TEST(MappedWrapper, InputMapperPerModelPartPair) {
+  Fluid fluid(/*second_part=*/true);
+  const auto settings = [](const std::string& mappers) {
+    return Settings::load_string(
+        "type: mapped\nsolver_wrapper: {type: test_translating_wire, second_input: true}\n"
+        "input_mapper: " +
+            mappers + "\noutput_mapper: {type: nearest, directions: [z], components: [y]}\n",
+        "case.yaml");
+  };
+  const Settings two = settings(
+      "[{type: linear, directions: [z], max_distance: 0.01, unmatched: zero}, "
+      "{type: nearest, directions: [z], max_distance: 0.01, unmatched: zero}]");
+  auto mapped = SolverWrapperRegistry::instance().create(two, RunSettings{});
+  two.check_unused_keys();
+  mapped->initialize();
+  mapped->adopt_interfaces(fluid.output_interface(), fluid.input_interface());
+  mapped->initialize_step(1, 1.0);
+  mapped->solve(fluid.output_interface());
+  const auto& wire = *TranslatingWire::last;
+  const Eigen::VectorXd z = wire.input_interface().parts()[0].model_part->coordinates.col(2);
+  int steps = 0;
+  for (Eigen::Index i = 0; i < z.size(); ++i) {
+    const bool inside = z(i) >= 0.0;
+    // Linear on a 0.005 grid (h^2 / 8); nearest on a 0.01 grid: the value half a grid step
+    // away at most, where 2 (1 + z^2) changes by 4 z 0.005 <= 0.02.
+    EXPECT_NEAR(wire.received(i, 0), inside ? fluid_pressure(z(i)) : 0.0, 4e-6) << z(i);
+    EXPECT_NEAR(wire.received_b(i, 0), inside ? 2 * fluid_pressure(z(i)) : 0.0, 0.021) << z(i);
+    if (inside && std::abs(wire.received_b(i, 0) - 2 * fluid_pressure(z(i))) > 1e-4) ++steps;
+  }
+  // The second part was mapped by its own mapper: nearest's staircase, not linear's line.
+  EXPECT_GT(steps, 5);
+  // A list must have one mapper per pair.
+  const Settings three = settings("[{type: nearest}, {type: nearest}, {type: nearest}]");
+  auto wrong = SolverWrapperRegistry::instance().create(three, RunSettings{});
+  wrong->initialize();
+  try {
+    wrong->adopt_interfaces(fluid.output_interface(), fluid.input_interface());
+    FAIL() << "three mappers for two pairs were accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("3 input mappers for 2 input model part pairs"),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("case.yaml:"), std::string::npos) << e.what();
   }
 }
 
