@@ -481,13 +481,7 @@ def solver_wrappers(p, prefix):
       interface_node_set: SURFACEN
       threads: {p['calculix']['threads']}                    # the film waits while the wire is solved
 {wire_drive_keys(p)}      timeout: 600
-    input_mapper:                 # film faces (axis z, radial y) -> wire faces (r, axis)
-      type: overlap               # each wire face: the length-weighted mean of the film faces it
-      directions: [y]             # overlaps along the axis, so the film's load is conserved; zero
-                                  # (ambient) for the part of a wire face outside the film
-      transformers:
-        - {{type: permutation, permutation: [1, 2, 0]}}   # film (x, y, z) -> (y, z, x)
-    output_mapper:                # wire surface nodes (r, axis) -> film wall points (wedge)
+{input_mappers(p)}    output_mapper:                # wire surface nodes (r, axis) -> film wall points (wedge)
       type: linear
       components: [x, y]          # only the radial displacement moves the film: it slides
       directions: [x, z]          # across the wedge and along the axis, not radially: the film's
@@ -519,6 +513,27 @@ def surface_stiffness(p):
         return given
     wire, face = p["wire"], p["wire"]["length"] / p["mesh"]["wire_axial_elements"]
     return math.pi * wire["young"] / ((1 - wire["poisson"] ** 2) * face)
+
+
+def input_mappers(p):
+    """Film faces -> wire faces; driven by displacement, first film points -> wire nodes."""
+    faces = """type: overlap               # each wire face: the length-weighted mean of the film faces it
+      directions: [y]             # overlaps along the axis, so the film's load is conserved; zero
+                                  # (ambient) for the part of a wire face outside the film
+      transformers:
+        - {type: permutation, permutation: [1, 2, 0]}   # film (x, y, z) -> (y, z, x)
+"""
+    if not displacement_driven(p):
+        return ("    input_mapper:                 # film faces (axis z, radial y) -> wire faces "
+                "(r, axis)\n      " + faces)
+    return """    input_mapper:                 # a mapper per model part pair:
+      - type: linear              # film wall points -> the wire's drivable nodes: the wall's
+        directions: [y, z]        # position there, along the axis and across the wedge (an
+        max_distance: 1.0e-4      # interpolation, so that the output mapper's way back gives
+        unmatched: zero           # the wall again); zero beyond the film (not driven there)
+        transformers:
+          - {type: permutation, permutation: [1, 2, 0]}   # film (x, y, z) -> (y, z, x)
+      - """ + faces.replace("\n      ", "\n        ")
 
 
 def film_drive_keys(p):

@@ -323,12 +323,25 @@ void CalculixSolverWrapper::build_interfaces() {
   for (std::size_t i = 0; i < interface_nodes_.size(); ++i)
     nodes->coordinates.row(static_cast<Eigen::Index>(i)) =
         deck_->node(interface_nodes_[i]).transpose();
-  std::vector<std::string> inputs = input_variables_;
-  if (drive_)
-    for (const auto& variable : calculix::DisplacementDrive::input_variables())
-      inputs.push_back(variable);
-  input_interface_ = Interface({{faces, inputs}});
   output_interface_ = Interface({{nodes, {"displacement"}}});
+  if (!drive_) {
+    input_interface_ = Interface({{faces, input_variables_}});
+    return;
+  }
+  // Driven by displacement: the other solver's wall position at the drivable nodes (first, as
+  // a film gives its points before its faces), its loads, gap and coverage on the faces.
+  std::vector<std::string> inputs = input_variables_;
+  for (const auto& variable : calculix::DisplacementDrive::face_variables())
+    inputs.push_back(variable);
+  auto drivable = std::make_shared<ModelPart>();
+  drivable->name = driven_node_set_name_;
+  drivable->ids = driven_node_set_;
+  drivable->coordinates.resize(static_cast<Eigen::Index>(driven_node_set_.size()), 3);
+  for (std::size_t i = 0; i < driven_node_set_.size(); ++i)
+    drivable->coordinates.row(static_cast<Eigen::Index>(i)) =
+        deck_->node(driven_node_set_[i]).transpose();
+  input_interface_ =
+      Interface({{drivable, {calculix::DisplacementDrive::kNodeVariable}}, {faces, inputs}});
 }
 
 void CalculixSolverWrapper::initialize_step(int step, double /*time*/) {
@@ -396,12 +409,12 @@ void CalculixSolverWrapper::write_loads(const Interface& input) const {
     loads_->write(file(kLoadsFile), pressure, traction);
     return;
   }
-  calculix::DisplacementDrive::FaceInputs inputs{
+  calculix::DisplacementDrive::Inputs inputs{
       pressure, traction.size() > 0 ? traction : RowMatrix::Zero(pressure.size(), 3),
-      input.values(surface_name_, "gap").col(0), input.values(surface_name_, "wall_displacement"),
-      input.values(surface_name_, "coverage").col(0)};
-  if (!inputs.gap.allFinite() || !inputs.wall_displacement.allFinite() ||
-      !inputs.coverage.allFinite())
+      input.values(surface_name_, "gap").col(0), input.values(surface_name_, "coverage").col(0),
+      input.values(driven_node_set_name_, calculix::DisplacementDrive::kNodeVariable)};
+  if (!inputs.gap.allFinite() || !inputs.coverage.allFinite() ||
+      !inputs.wall_displacement.allFinite())
     fail(
         fmt::format("solver '{}' at {}: the gap, wall displacement or coverage contain NaN or "
                     "infinity",

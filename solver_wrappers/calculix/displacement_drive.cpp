@@ -23,8 +23,8 @@ bool is_boundary_card(const std::string& text) {
 
 }  // namespace
 
-const std::vector<std::string>& DisplacementDrive::input_variables() {
-  static const std::vector<std::string> variables = {"gap", "wall_displacement", "coverage"};
+const std::vector<std::string>& DisplacementDrive::face_variables() {
+  static const std::vector<std::string> variables = {"gap", "coverage"};
   return variables;
 }
 
@@ -76,32 +76,30 @@ Eigen::Vector3d DisplacementDrive::direction(std::int64_t node) const {
   return Eigen::Vector3d::Unit(dof_ - 1);
 }
 
-void DisplacementDrive::plan(const FaceInputs& inputs) {
+void DisplacementDrive::plan(const Inputs& inputs) {
   const auto faces = static_cast<Eigen::Index>(loads_.faces().size());
   if (inputs.pressure.size() != faces || inputs.gap.size() != faces ||
-      inputs.coverage.size() != faces || inputs.wall_displacement.rows() != faces ||
-      inputs.traction.rows() != faces)
-    throw std::invalid_argument("DisplacementDrive::plan: one value per interface face expected");
+      inputs.coverage.size() != faces || inputs.traction.rows() != faces ||
+      inputs.wall_displacement.rows() != static_cast<Eigen::Index>(drivable_nodes_.size()))
+    throw std::invalid_argument(
+        "DisplacementDrive::plan: one value per interface face and one wall displacement per "
+        "drivable node expected");
   inputs_ = inputs;
   driven_face_.assign(loads_.faces().size(), false);
   for (Eigen::Index f = 0; f < faces; ++f)
     driven_face_[static_cast<std::size_t>(f)] =
         inputs.coverage[f] >= kDrivenCoverage && inputs.gap[f] > 0.0;
   prescribed_.clear();
-  for (const auto node : drivable_nodes_) {
+  for (std::size_t k = 0; k < drivable_nodes_.size(); ++k) {
+    const auto node = drivable_nodes_[k];
     const auto found = faces_of_.find(node);
     if (found == faces_of_.end()) continue;
     const auto& faces_of_node = found->second;
     if (!std::all_of(faces_of_node.begin(), faces_of_node.end(),
                      [&](std::size_t f) { return driven_face_[f]; }))
       continue;
-    const Eigen::Vector3d e = direction(node);
-    double sum = 0.0;
-    for (const auto f : faces_of_node) {
-      const auto row = static_cast<Eigen::Index>(f);
-      sum += inputs.wall_displacement.row(row).dot(e.transpose()) / inputs.coverage[row];
-    }
-    prescribed_[node] = sum / static_cast<double>(faces_of_node.size());
+    prescribed_[node] =
+        inputs.wall_displacement.row(static_cast<Eigen::Index>(k)).dot(direction(node).transpose());
   }
 }
 

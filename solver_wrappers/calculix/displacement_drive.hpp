@@ -6,7 +6,9 @@
 // (docs/design/displacement-driven-wire.md):
 //   1. plan(): a face is driven when the other solver covers at least half of it; a node when
 //      every interface face it belongs to is driven. Its prescribed value in the driven
-//      direction is the covered mean of its faces' wall displacement.
+//      direction is the other solver's wall position at the node (`wall_displacement`, given
+//      per drivable node: interpolated at the node, so that mapping the returned position back
+//      gives the wall again; a mean over faces would not, and the balance would be off).
 //   2. write(): *BOUNDARY, OP=NEW with the driven nodes (ccx keeps a prescribed node
 //      prescribed in later steps otherwise, and the wire slides), the deck's own *BOUNDARY
 //      cards again (OP=NEW dropped them), and the loads as consistent nodal forces, but none
@@ -34,8 +36,10 @@ namespace cocopp::calculix {
 
 class DisplacementDrive {
  public:
-  /// The input variables this mode adds to pressure and traction (per interface face).
-  static const std::vector<std::string>& input_variables();
+  /// The input variables this mode adds to pressure and traction on the interface faces, and
+  /// the one it takes at the drivable nodes.
+  static const std::vector<std::string>& face_variables();
+  static constexpr const char* kNodeVariable = "wall_displacement";
 
   /// `interface_nodes`: the nodes whose displacement the wrapper returns; `drivable_nodes`:
   /// those that may be driven (all of the surface's: on a 3D sector, the interface node set
@@ -47,15 +51,16 @@ class DisplacementDrive {
                     std::vector<std::int64_t> interface_nodes,
                     std::vector<std::int64_t> drivable_nodes, int dof, double surface_stiffness);
 
-  /// This iteration's inputs (from the wrapper's input interface, one row per face).
-  struct FaceInputs {
+  /// This iteration's inputs (from the wrapper's input interface): one row per interface face,
+  /// and the wall displacement one per drivable node.
+  struct Inputs {
     Eigen::VectorXd pressure;
     RowMatrix traction;
     Eigen::VectorXd gap;
-    RowMatrix wall_displacement;
     Eigen::VectorXd coverage;
+    RowMatrix wall_displacement;
   };
-  void plan(const FaceInputs& inputs);
+  void plan(const Inputs& inputs);
   /// The step's loads file: boundary cards, then the loads (see the header comment).
   void write(std::ostream& out) const;
   /// The interface nodes' displacement to return (one row per interface node, global):
@@ -84,7 +89,7 @@ class DisplacementDrive {
   std::map<std::int64_t, std::vector<std::size_t>> faces_of_;
 
   // From plan().
-  FaceInputs inputs_;
+  Inputs inputs_;
   std::vector<bool> driven_face_;
   std::map<std::int64_t, double> prescribed_;  ///< driven node -> value along direction()
   mutable double largest_imbalance_ = 0.0;

@@ -148,9 +148,9 @@ int main(int argc, char* argv[]) {
       "traction (Pa) on their faces. Started by `cocopp run` (solver type openfoam).");
   argList::addOption("patches", "(patch ...)", "the fluid-structure interface patches");
   argList::addOption("gapPatch", "patch",
-                     "also output, on the interface faces, the gap (distance to this patch) and "
-                     "the wall displacement (of the face centres): what a structure driven by "
-                     "displacement under a film takes");
+                     "also output the gap of the interface faces (distance to this patch) and "
+                     "the wall displacement of the interface points: what a structure driven "
+                     "by displacement under a film takes");
   argList args(argc, argv);
   if (!args.checkRootCase()) FatalError.exit();
   // OpenFOAM's fatal errors become exceptions, reported to the coupler with their message.

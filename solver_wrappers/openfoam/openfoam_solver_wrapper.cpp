@@ -4,10 +4,10 @@
 // Keys (docs/solver-wrappers-openfoam.md): those of `process` (working_directory is the
 // OpenFOAM case directory; the default command is [<bin>/cocoppPimpleFoam, -patches, (...)])
 // plus `boundary_names`, the interface patches, `gap_patch` (the interface faces then also
-// output their gap to this patch and their wall displacement), and `cores`: more than 1 decomposes
-// the case (decomposePar) and runs the application under mpirun. check() checks the case before
-// anything runs: fixed deltaT equal to the coupler's, a dynamic mesh with a motion solver, the
-// patches in the mesh, the density for the loads in Pa, the decomposition.
+// output their gap to this patch, the points their wall displacement), and `cores`: more than 1
+// decomposes the case (decomposePar) and runs the application under mpirun. check() checks the case
+// before anything runs: fixed deltaT equal to the coupler's, a dynamic mesh with a motion solver,
+// the patches in the mesh, the density for the loads in Pa, the decomposition.
 #include <fmt/format.h>
 
 #include <set>

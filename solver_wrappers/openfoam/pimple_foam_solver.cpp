@@ -208,19 +208,22 @@ sdk::InterfaceDescription PimpleFoamSolver::interface_description() const {
     const auto ids = [](const std::vector<label>& labels) {
       return std::vector<std::int64_t>(labels.begin(), labels.end());
     };
+    // With a gap patch the points also report where the wall stands (their displacement: what
+    // a structure driven under the film is driven to), and the faces their gap.
     description.model_parts.push_back({patch_names_[i] + "_points",
                                        ids(numbering.point_ids()),
                                        point_coordinates,
                                        {"displacement"},
-                                       {}});
+                                       gap_patch_id_ < 0
+                                           ? std::vector<std::string>{}
+                                           : std::vector<std::string>{"wall_displacement"}});
     description.model_parts.push_back(
         {patch_names_[i] + "_faces",
          ids(numbering.face_ids()),
          face_coordinates,
          {},
-         gap_patch_id_ < 0
-             ? std::vector<std::string>{"pressure", "traction"}
-             : std::vector<std::string>{"pressure", "traction", "gap", "wall_displacement"}});
+         gap_patch_id_ < 0 ? std::vector<std::string>{"pressure", "traction"}
+                           : std::vector<std::string>{"pressure", "traction", "gap"}});
   }
   description.initial_output = loads();
   return description;
@@ -491,9 +494,17 @@ void PimpleFoamSolver::check_cells_not_inverted() const {
 std::vector<double> PimpleFoamSolver::loads() const {
   std::vector<double> values;  // gathered on the master
   const tmp<volSymmTensorField> deviatoric_stress = turbulence_->devReff();  // kinematic
-  // The output layout: per patch (model part P_faces) the pressures, then the tractions.
+  // The output layout: per patch, with a gap patch the points' wall displacement (model part
+  // P_points); then (P_faces) the pressures, the tractions and with a gap patch the gaps.
   forAll(patch_ids_, i) {
     const label id = patch_ids_[i];
+    if (gap_patch_id_ >= 0) {
+      const labelList& points = mesh_->boundaryMesh()[id].meshPoints();
+      const pointField wall(pointField(mesh_->points(), points) -
+                            pointField(initial_points(), points));
+      const auto part = numbering_[i].gather_points(flatten(wall), 3);
+      values.insert(values.end(), part.begin(), part.end());
+    }
     const scalarField pressure(rho_ * p_->boundaryField()[id]);
     const vectorField normals(mesh_->boundary()[id].nf());
     const vectorField traction(rho_ * (normals & deviatoric_stress().boundaryField()[id]));
@@ -501,13 +512,8 @@ std::vector<double> PimpleFoamSolver::loads() const {
                              numbering_[i].gather_faces(flatten(traction), 3)})
       values.insert(values.end(), part.begin(), part.end());
     if (gap_patch_id_ < 0) continue;
-    // The wall's own motion: the face centres now against those of the initial mesh.
-    const polyPatch& patch = mesh_->boundaryMesh()[id];
-    vectorField wall(patch.faceCentres());
-    forAll(patch, face_i) wall[face_i] -= patch[face_i].centre(initial_points());
-    for (const auto& part :
-         {numbering_[i].gather_faces(gaps(id), 1), numbering_[i].gather_faces(flatten(wall), 3)})
-      values.insert(values.end(), part.begin(), part.end());
+    const auto part = numbering_[i].gather_faces(gaps(id), 1);
+    values.insert(values.end(), part.begin(), part.end());
   }
   return values;
 }

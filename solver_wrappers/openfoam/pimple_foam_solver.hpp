@@ -74,7 +74,7 @@ class RestartablePimpleControl : public Foam::pimpleControl {
 class PimpleFoamSolver : public sdk::Solver {
  public:
   /// `gap_patch`: if not empty, the interface faces also output their gap to this patch and
-  /// their wall displacement.
+  /// the interface points their displacement (`wall_displacement`).
   PimpleFoamSolver(Foam::argList& args, const Foam::wordList& patch_names,
                    const Foam::word& gap_patch = Foam::word());
   ~PimpleFoamSolver() override;

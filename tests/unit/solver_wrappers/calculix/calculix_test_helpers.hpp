@@ -59,10 +59,11 @@ class CalculixCase {
   SolverWrapper& wrapper() { return *wrapper_; }
   std::filesystem::path path(const std::string& name) const { return directory_ / name; }
 
-  /// The wrapper's input with a uniform pressure and traction on every face.
+  /// The wrapper's input with a uniform pressure and traction on every face (the model part
+  /// that takes them: the first, or the faces after a driven wrapper's nodes).
   Interface loads(double pressure, const Eigen::Vector3d& traction = Eigen::Vector3d::Zero()) {
     Interface input = wrapper_->input_interface();
-    const std::string part = input.parts().front().model_part->name;
+    const std::string part = input.parts().back().model_part->name;
     input.values(part, "pressure").setConstant(pressure);
     auto t = input.values(part, "traction");
     for (Eigen::Index i = 0; i < t.rows(); ++i) t.row(i) = traction.transpose();

@@ -43,20 +43,22 @@ std::string drive_keys(double factor = 1.0) {
 }
 
 /// The wrapper's input: the pressure on every face, the wall at `radial` (outward from the
-/// axis) on the faces `covered` says, a thick film (its stiffness 2 p / gap is negligible).
+/// axis) at every drivable node, the faces `covered` says covered, and a thick film (its
+/// stiffness 2 p / gap is negligible).
 Interface drive_inputs(CalculixCase& test, double radial,
                        const std::function<bool(Eigen::Index)>& covered) {
   Interface input = test.loads(kPressure);
-  const auto& faces = *input.parts().front().model_part;
-  auto wall = input.values(faces.name, "wall_displacement");
+  const auto& nodes = *input.parts().front().model_part;
+  const auto& faces = *input.parts().back().model_part;
+  auto wall = input.values(nodes.name, "wall_displacement");
+  for (Eigen::Index n = 0; n < nodes.coordinates.rows(); ++n)
+    wall.row(n) =
+        radial *
+        Eigen::RowVector3d(nodes.coordinates(n, 0), nodes.coordinates(n, 1), 0.0).normalized();
   auto coverage = input.values(faces.name, "coverage");
   input.values(faces.name, "gap").setConstant(1.0);
-  for (Eigen::Index f = 0; f < faces.coordinates.rows(); ++f) {
-    const Eigen::Vector3d e_r =
-        Eigen::Vector3d(faces.coordinates(f, 0), faces.coordinates(f, 1), 0.0).normalized();
-    wall.row(f) = radial * e_r.transpose();
+  for (Eigen::Index f = 0; f < faces.coordinates.rows(); ++f)
     coverage(f, 0) = covered(f) ? 1.0 : 0.0;
-  }
   return input;
 }
 
