@@ -80,6 +80,27 @@ bool is_axisymmetric(const std::string& type) {
   return type.rfind("CAX", 0) == 0;
 }
 
+/// A node set's ids, sorted, each once.
+std::vector<std::int64_t> sorted_node_set(const calculix::InputDeck& deck,
+                                          const std::string& name) {
+  std::vector<std::int64_t> nodes = deck.node_set(name);
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  return nodes;
+}
+
+/// A model part of the deck's nodes `ids` at their deck coordinates.
+std::shared_ptr<ModelPart> node_part(const calculix::InputDeck& deck, const std::string& name,
+                                     const std::vector<std::int64_t>& ids) {
+  auto part = std::make_shared<ModelPart>();
+  part->name = name;
+  part->ids = ids;
+  part->coordinates.resize(static_cast<Eigen::Index>(ids.size()), 3);
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    part->coordinates.row(static_cast<Eigen::Index>(i)) = deck.node(ids[i]).transpose();
+  return part;
+}
+
 }  // namespace
 
 CalculixSolverWrapper::CalculixSolverWrapper(const Settings& settings, const RunSettings& run)
@@ -244,17 +265,11 @@ void CalculixSolverWrapper::read_deck() {
     loads_ = std::make_unique<calculix::InterfaceLoads>(*deck_, deck_->surface(surface_name_));
     if (loads_->faces().empty())
       throw calculix::DeckError("surface " + surface_name_ + " has no faces");
-    interface_nodes_ = deck_->node_set(node_set_name_);
-    std::sort(interface_nodes_.begin(), interface_nodes_.end());
-    interface_nodes_.erase(std::unique(interface_nodes_.begin(), interface_nodes_.end()),
-                           interface_nodes_.end());
+    interface_nodes_ = sorted_node_set(*deck_, node_set_name_);
     if (interface_nodes_.empty())
       throw calculix::DeckError("node set " + node_set_name_ + " is empty");
     if (displacement_drive_) {
-      driven_node_set_ = deck_->node_set(driven_node_set_name_);
-      std::sort(driven_node_set_.begin(), driven_node_set_.end());
-      driven_node_set_.erase(std::unique(driven_node_set_.begin(), driven_node_set_.end()),
-                             driven_node_set_.end());
+      driven_node_set_ = sorted_node_set(*deck_, driven_node_set_name_);
       drive_ = std::make_unique<calculix::DisplacementDrive>(
           *deck_, *loads_, interface_nodes_, driven_node_set_, driven_dof_, surface_stiffness_);
     }
@@ -316,14 +331,8 @@ void CalculixSolverWrapper::build_interfaces() {
     faces->ids.push_back(face.element * 10 + face.face);  // element 12, face S3 -> 123
     faces->coordinates.row(static_cast<Eigen::Index>(f)) = geometry[f].centroid.transpose();
   }
-  auto nodes = std::make_shared<ModelPart>();
-  nodes->name = node_set_name_;
-  nodes->ids = interface_nodes_;
-  nodes->coordinates.resize(static_cast<Eigen::Index>(interface_nodes_.size()), 3);
-  for (std::size_t i = 0; i < interface_nodes_.size(); ++i)
-    nodes->coordinates.row(static_cast<Eigen::Index>(i)) =
-        deck_->node(interface_nodes_[i]).transpose();
-  output_interface_ = Interface({{nodes, {"displacement"}}});
+  output_interface_ =
+      Interface({{node_part(*deck_, node_set_name_, interface_nodes_), {"displacement"}}});
   if (!drive_) {
     input_interface_ = Interface({{faces, input_variables_}});
     return;
@@ -333,15 +342,9 @@ void CalculixSolverWrapper::build_interfaces() {
   std::vector<std::string> inputs = input_variables_;
   for (const auto& variable : calculix::DisplacementDrive::face_variables())
     inputs.push_back(variable);
-  auto drivable = std::make_shared<ModelPart>();
-  drivable->name = driven_node_set_name_;
-  drivable->ids = driven_node_set_;
-  drivable->coordinates.resize(static_cast<Eigen::Index>(driven_node_set_.size()), 3);
-  for (std::size_t i = 0; i < driven_node_set_.size(); ++i)
-    drivable->coordinates.row(static_cast<Eigen::Index>(i)) =
-        deck_->node(driven_node_set_[i]).transpose();
-  input_interface_ =
-      Interface({{drivable, {calculix::DisplacementDrive::kNodeVariable}}, {faces, inputs}});
+  input_interface_ = Interface({{node_part(*deck_, driven_node_set_name_, driven_node_set_),
+                                 {calculix::DisplacementDrive::kNodeVariable}},
+                                {faces, inputs}});
 }
 
 void CalculixSolverWrapper::initialize_step(int step, double /*time*/) {

@@ -85,6 +85,7 @@ void DisplacementDrive::plan(const Inputs& inputs) {
         "DisplacementDrive::plan: one value per interface face and one wall displacement per "
         "drivable node expected");
   inputs_ = inputs;
+  film_forces_ = loads_.nodal_forces(inputs_.traction, inputs_.pressure);
   driven_face_.assign(loads_.faces().size(), false);
   for (Eigen::Index f = 0; f < faces; ++f)
     driven_face_[static_cast<std::size_t>(f)] =
@@ -111,9 +112,9 @@ void DisplacementDrive::write(std::ostream& out) const {
   out << "** The deck's own boundary conditions again (OP=NEW removed them)\n";
   for (const auto& line : model_boundary_) out << line << "\n";
   out << "** The other solver's loads, none in a driven direction\n";
-  loads_.write_nodal_forces(
-      out, loads_.nodal_forces(inputs_.traction, inputs_.pressure),
-      [&](std::int64_t node, int dof) { return dof == dof_ && prescribed_.count(node) != 0; });
+  loads_.write_nodal_forces(out, film_forces_, [&](std::int64_t node, int dof) {
+    return dof == dof_ && prescribed_.count(node) != 0;
+  });
 }
 
 double DisplacementDrive::share(std::int64_t node, std::size_t face) const {
@@ -137,11 +138,10 @@ RowMatrix DisplacementDrive::balance(const RowMatrix& displacement,
     reaction_row_of[drivable_nodes_[i]] = static_cast<Eigen::Index>(i);
   // The nodal imbalance along the driven direction: the other solver's force minus the force
   // the structure takes (its reaction). Elsewhere the structure takes what is applied.
-  const auto film_forces = loads_.nodal_forces(inputs_.traction, inputs_.pressure);
   std::map<std::int64_t, double> imbalance;
   for (const auto& [node, value] : prescribed_) {
-    const auto film = film_forces.find(node);
-    const double film_force = film == film_forces.end() ? 0.0 : film->second.dot(direction(node));
+    const auto film = film_forces_.find(node);
+    const double film_force = film == film_forces_.end() ? 0.0 : film->second.dot(direction(node));
     imbalance[node] = film_force - reaction(reaction_row_of.at(node), dof_ - 1);
   }
   // Per driven face, the traction whose nodal forces a face's driven nodes share: each node's

@@ -90,6 +90,7 @@ class DisplacementDrive {
 
   // From plan().
   Inputs inputs_;
+  std::map<std::int64_t, Eigen::Vector3d> film_forces_;  ///< the inputs' consistent nodal forces
   std::vector<bool> driven_face_;
   std::map<std::int64_t, double> prescribed_;  ///< driven node -> value along direction()
   mutable double largest_imbalance_ = 0.0;
