@@ -14,6 +14,11 @@
 // receives the input mapper applied to ones (how much of each of its faces the other side
 // covers: the calculix wrapper driven by displacement under a film needs it).
 //
+// `exact_round_trip: [wall_displacement]`: variables that are the other side's record of what
+// the output mapper gives it (a film's wall position at its points) are mapped onto the inner
+// solver's nodes so that the output mapper gives them back exactly (ExactRoundTrip: a
+// structure driven by the wall position then balances the forces at the coupling's fixed point).
+//
 // A moving frame: `frame_velocity: [vx, vy, vz]` says that the inner solver describes its
 // body in a frame that moves at this velocity (in the inner solver's coordinates, before the
 // transformers) relative to the other solver's. Its points are then at their coordinates plus
@@ -26,9 +31,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <map>
 #include <stdexcept>
 
+#include "core/case/suggest.hpp"
 #include "mappers/mapper.hpp"
+#include "solver_wrappers/mapped/exact_round_trip.hpp"
 #include "solver_wrappers/solver_wrapper.hpp"
 
 namespace cocopp {
@@ -48,6 +56,8 @@ class MappedSolverWrapper : public SolverWrapper {
         current_(settings.get_choice("coordinates", "initial", {"initial", "current"}) ==
                  "current"),
         report_(settings.get<bool>("report_quality", false)),
+        exact_variables_(settings.get<std::vector<std::string>>("exact_round_trip", {})),
+        exact_where_(settings.where("exact_round_trip")),
         time_(run.timestep_start * run.delta_t) {
     if (settings.has("name")) inner_->set_default_name(name_);
     // Build one mapper now so that `cocopp check` validates the mapper settings.
@@ -81,6 +91,7 @@ class MappedSolverWrapper : public SolverWrapper {
 
   void initialize_step(int step, double time) override {
     inner_->initialize_step(step, time);
+    record_round_trips();  // of the last step's converged iterate
     time_ = time;
     if (rebuild_ == "time_step") build_mappers();
   }
@@ -90,12 +101,9 @@ class MappedSolverWrapper : public SolverWrapper {
     if (rebuild_ == "iteration") build_mappers();
     const auto start = Clock::now();
     Interface inner_input = inner_->input_interface();
-    for (const auto& pair : input_pairs_)
+    for (auto& pair : input_pairs_)
       for (const auto& variable : variables_of(inner_input, pair.inner))
-        inner_input.values(pair.inner, variable) =
-            is_coverage(variable, pair) ? pair.mapper->map(RowMatrix::Ones(
-                                              initial_coordinates(input_, pair.outer).rows(), 1))
-                                        : pair.mapper->map(input_.values(pair.outer, variable));
+        inner_input.values(pair.inner, variable) = map_input(pair, variable);
     map_seconds_ += seconds_since(start);
     const Interface& inner_output = inner_->solve(inner_input);
     const auto output_start = Clock::now();
@@ -114,6 +122,14 @@ class MappedSolverWrapper : public SolverWrapper {
   void save_restart(int step) override { inner_->save_restart(step); }
   void finalize() override {
     inner_->finalize();
+    record_round_trips();
+    for (const auto& pair : input_pairs_)
+      for (const auto& [variable, round_trip] : pair.round_trips) {
+        fmt::print(
+            "  mapping        : {}: exact round trip of {} at the steps' last iterates: the "
+            "mappers alone missed by up to {:.3g}, the exact one by {:.3g}\n",
+            name_, variable, plain_round_trip_, exact_round_trip_);
+      }
     if (builds_ > 1)  // rebuilt during the run: what the sliding interface costs
       fmt::print(
           "  mapping        : {}: mappers built {} times, {:.3g} ms each; mapping {:.3g} ms "
@@ -140,6 +156,11 @@ class MappedSolverWrapper : public SolverWrapper {
     /// with the body.
     std::string follow_part;
     std::unique_ptr<Mapper> follow_output;
+    /// `exact_round_trip` variables of this pair, mapped back by the output pair
+    /// `back` (the one onto the same outer part), whose inner nodes are rows `back_rows` here.
+    std::map<std::string, ExactRoundTrip> round_trips;
+    std::size_t back = 0;
+    std::vector<Eigen::Index> back_rows;
   };
   struct OutputPair {
     std::string inner, outer;
@@ -182,11 +203,12 @@ class MappedSolverWrapper : public SolverWrapper {
       check_variables(inner_->output_interface(), inner_out[j], output_, outer_out[j]);
     }
     for (std::size_t i = 0; i < inner_in.size(); ++i) {
-      InputPair pair{
-          outer_in[i], inner_in[i],
-          std::make_unique<Mapper>(input_settings_[std::min(i, input_settings_.size() - 1)]),
-          inner_out.empty() ? std::string() : inner_out[std::min(i, inner_out.size() - 1)],
-          nullptr};
+      InputPair pair;
+      pair.outer = outer_in[i];
+      pair.inner = inner_in[i];
+      pair.mapper =
+          std::make_unique<Mapper>(input_settings_[std::min(i, input_settings_.size() - 1)]);
+      if (!inner_out.empty()) pair.follow_part = inner_out[std::min(i, inner_out.size() - 1)];
       check_variables(input_, pair.outer, inner_->input_interface(), pair.inner);
       if (current_ && !pair.follow_part.empty() &&
           !has_displacement(inner_->input_interface(), pair.inner) &&
@@ -205,6 +227,96 @@ class MappedSolverWrapper : public SolverWrapper {
       }
       input_pairs_.push_back(std::move(pair));
     }
+    pair_round_trips();
+  }
+
+  /// Each `exact_round_trip` variable needs an input pair whose inner part takes it and an
+  /// output pair that maps back onto the same outer part, from nodes that the input pair's
+  /// inner part holds too.
+  void pair_round_trips() {
+    std::vector<std::string> taken;
+    for (const auto& variable : exact_variables_) {
+      bool found = false;
+      for (auto& pair : input_pairs_) {
+        const auto variables = variables_of(inner_->input_interface(), pair.inner);
+        taken.insert(taken.end(), variables.begin(), variables.end());
+        if (std::find(variables.begin(), variables.end(), variable) == variables.end()) continue;
+        found = true;
+        pair.back = output_pair_onto(pair.outer, variable);
+        pair.back_rows = rows_of(output_pairs_[pair.back].inner, pair.inner);
+        pair.round_trips[variable];
+      }
+      if (!found)
+        throw std::runtime_error(fmt::format(
+            "{}: mapped solver '{}': exact_round_trip: '{}' is not a variable that '{}' "
+            "takes (it takes: {}){}",
+            exact_where_, name_, variable, inner_->name(), fmt::join(taken, ", "),
+            did_you_mean(variable, taken)));
+    }
+  }
+
+  std::size_t output_pair_onto(const std::string& outer, const std::string& variable) const {
+    for (std::size_t j = 0; j < output_pairs_.size(); ++j)
+      if (output_pairs_[j].outer == outer) return j;
+    throw std::runtime_error(fmt::format(
+        "{}: mapped solver '{}': exact_round_trip: '{}' comes from model part '{}', onto which "
+        "no output model part maps back: the round trip needs both ways",
+        exact_where_, name_, variable, outer));
+  }
+
+  /// For each point of the inner part `from`, its row in the inner part `in` (by id).
+  std::vector<Eigen::Index> rows_of(const std::string& from, const std::string& in) const {
+    const auto& from_ids = model_part(inner_->output_interface(), from).ids;
+    const auto& in_ids = model_part(inner_->input_interface(), in).ids;
+    std::map<std::int64_t, Eigen::Index> row;
+    for (std::size_t i = 0; i < in_ids.size(); ++i) row[in_ids[i]] = static_cast<Eigen::Index>(i);
+    std::vector<Eigen::Index> rows;
+    for (const auto id : from_ids) {
+      const auto found = row.find(id);
+      if (found == row.end())
+        throw std::runtime_error(fmt::format(
+            "{}: mapped solver '{}': exact_round_trip: point {} of '{}' (output) is not in "
+            "'{}' (input): the nodes that map back must be among those that take the variable",
+            exact_where_, name_, id, from, in));
+      rows.push_back(found->second);
+    }
+    return rows;
+  }
+
+  static const ModelPart& model_part(const Interface& interface, const std::string& name) {
+    for (const auto& p : interface.parts())
+      if (p.model_part->name == name) return *p.model_part;
+    throw std::logic_error("no model part " + name);
+  }
+
+  RowMatrix map_input(InputPair& pair, const std::string& variable) {
+    if (is_coverage(variable, pair))
+      return pair.mapper->map(RowMatrix::Ones(initial_coordinates(input_, pair.outer).rows(), 1));
+    const auto exact = pair.round_trips.find(variable);
+    if (exact != pair.round_trips.end()) return map_exactly(pair, exact->second, variable);
+    return pair.mapper->map(input_.values(pair.outer, variable));
+  }
+
+  /// The exact round trip, with the nodes the inner solver reports as not `driven` (if it
+  /// reports that) held at their latest displacement, as the output mapper sees them.
+  RowMatrix map_exactly(const InputPair& pair, ExactRoundTrip& round_trip,
+                        const std::string& variable) {
+    const std::string& nodes = output_pairs_[pair.back].inner;
+    const Interface& inner_output = inner_->output_interface();
+    const auto reported = variables_of(inner_output, nodes);
+    const bool reports = std::find(reported.begin(), reported.end(), "driven") != reported.end();
+    const auto rows = static_cast<Eigen::Index>(pair.back_rows.size());
+    std::vector<bool> held(pair.back_rows.size(), false);
+    RowMatrix base = RowMatrix::Zero(rows, 3);
+    base.rowwise() += frame_offset();
+    for (Eigen::Index k = 0; reports && k < rows; ++k) {
+      held[static_cast<std::size_t>(k)] = inner_output.values(nodes, "driven")(k, 0) == 0.0;
+      if (held[static_cast<std::size_t>(k)])
+        base.row(k) += inner_output.values(nodes, "displacement").row(k);
+    }
+    round_trip.hold(held);
+    const RowMatrix w = input_.values(pair.outer, variable);
+    return round_trip.map(w, base.cols() == w.cols() ? base : RowMatrix());
   }
 
   /// `coverage`, which the inner solver takes and the other side does not give: the input
@@ -315,6 +427,20 @@ class MappedSolverWrapper : public SolverWrapper {
                               coordinates(pair.outer, output_, input_, false));
       if (report_) report("output", pair.inner, pair.outer, *pair.mapper);
     }
+    for (auto& pair : input_pairs_)
+      for (auto& [variable, round_trip] : pair.round_trips) {
+        const auto block = input_.block(pair.outer, variable);
+        round_trip.build(*pair.mapper, pair.back_rows, *output_pairs_[pair.back].mapper,
+                         block.points, block.components);
+      }
+  }
+
+  void record_round_trips() {
+    for (const auto& pair : input_pairs_)
+      for (const auto& [variable, round_trip] : pair.round_trips) {
+        plain_round_trip_ = std::max(plain_round_trip_, round_trip.plain_defect());
+        exact_round_trip_ = std::max(exact_round_trip_, round_trip.defect());
+      }
   }
 
   /// The mapping quality report: distance from each target to its source stencil.
@@ -346,9 +472,12 @@ class MappedSolverWrapper : public SolverWrapper {
   std::string rebuild_;
   bool current_;
   bool report_;
+  std::vector<std::string> exact_variables_;
+  std::string exact_where_;
   double time_;  ///< of the time step being solved
   Eigen::RowVector3d frame_velocity_ = Eigen::RowVector3d::Zero();
-  double build_seconds_ = 0.0, map_seconds_ = 0.0;  ///< for the line at the end of the run
+  double plain_round_trip_ = 0.0, exact_round_trip_ = 0.0;  ///< largest misses (run)
+  double build_seconds_ = 0.0, map_seconds_ = 0.0;          ///< for the line at the end of the run
   int builds_ = 0, solves_ = 0;
   Interface input_, output_;
   std::vector<InputPair> input_pairs_;

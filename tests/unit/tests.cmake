@@ -17,7 +17,7 @@ cocopp_unit_test(solver_wrappers/sdk SOURCES test_solver_sdk.cpp LIBS cocopp_sdk
 cocopp_unit_test(solver_wrappers/process
                  SOURCES test_child_process.cpp test_process_solver_wrapper.cpp
                  LIBS cocopp_solver_wrappers DEPENDS cocopp-test-solver)
-cocopp_unit_test(solver_wrappers/mapped SOURCES test_mapped_solver_wrapper.cpp
+cocopp_unit_test(solver_wrappers/mapped SOURCES test_mapped_solver_wrapper.cpp test_exact_round_trip.cpp
                  LIBS cocopp_solver_wrappers)
 # The OpenFOAM wrapper's coupler side (dictionary reading, case checks): no OpenFOAM needed.
 cocopp_unit_test(solver_wrappers/openfoam SOURCES test_openfoam_case.cpp
