@@ -17,6 +17,9 @@ const std::vector<VariableDefinition>& variable_definitions() {
       {"gap", 1, "m"},
       {"wall_displacement", 3, "m"},
       {"coverage", 1, "1"},
+      // 1 where such a structure drives its node, 0 where the node is loaded: a mapped
+      // wrapper's exact round trip takes the loaded ones' displacement as it is.
+      {"driven", 1, "1"},
   };
   return table;
 }

@@ -331,8 +331,10 @@ void CalculixSolverWrapper::build_interfaces() {
     faces->ids.push_back(face.element * 10 + face.face);  // element 12, face S3 -> 123
     faces->coordinates.row(static_cast<Eigen::Index>(f)) = geometry[f].centroid.transpose();
   }
-  output_interface_ =
-      Interface({{node_part(*deck_, node_set_name_, interface_nodes_), {"displacement"}}});
+  // Driven by displacement, the nodes also report whether they were driven.
+  output_interface_ = Interface({{node_part(*deck_, node_set_name_, interface_nodes_),
+                                  drive_ ? std::vector<std::string>{"displacement", "driven"}
+                                         : std::vector<std::string>{"displacement"}}});
   if (!drive_) {
     input_interface_ = Interface({{faces, input_variables_}});
     return;
@@ -389,6 +391,11 @@ const Interface& CalculixSolverWrapper::solve(const Interface& input) {
                                  calculix::read_node_print(results, "forces", driven_node_set_name_,
                                                            driven_node_set_))
                : displacement;
+    if (drive_) {
+      auto driven = output_interface_.values(node_set_name_, "driven");
+      for (std::size_t i = 0; i < interface_nodes_.size(); ++i)
+        driven(static_cast<Eigen::Index>(i), 0) = drive_->drives(interface_nodes_[i]) ? 1.0 : 0.0;
+    }
   } catch (const std::runtime_error& e) {
     fail(fmt::format("solver '{}' at {}: {}", name_, position(), e.what()));
   }

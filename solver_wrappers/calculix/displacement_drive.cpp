@@ -3,8 +3,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
+#include <tuple>
 
 namespace cocopp::calculix {
 
@@ -96,6 +98,9 @@ void DisplacementDrive::plan(const Inputs& inputs) {
     const auto found = faces_of_.find(node);
     if (found == faces_of_.end()) continue;
     const auto& faces_of_node = found->second;
+    // A node across the other solver's edge stays loaded: it barely moves the other
+    // solver's points, so the coupling could not tell its balance (it is reported as
+    // `driven` 0, and the mapped wrapper's round trip takes its displacement as it is).
     if (!std::all_of(faces_of_node.begin(), faces_of_node.end(),
                      [&](std::size_t f) { return driven_face_[f]; }))
       continue;
@@ -117,16 +122,113 @@ void DisplacementDrive::write(std::ostream& out) const {
   });
 }
 
+double DisplacementDrive::weight_in(std::int64_t node, std::size_t face) const {
+  const auto& geometry = loads_.geometry()[face];
+  const auto at = std::find(geometry.nodes.begin(), geometry.nodes.end(), node);
+  return geometry.weights[static_cast<Eigen::Index>(at - geometry.nodes.begin())];
+}
+
 double DisplacementDrive::share(std::int64_t node, std::size_t face) const {
-  const auto& geometry = loads_.geometry();
-  const auto weight_in = [&](std::size_t f) {
-    const auto& nodes = geometry[f].nodes;
-    const auto at = std::find(nodes.begin(), nodes.end(), node) - nodes.begin();
-    return geometry[f].weights[static_cast<Eigen::Index>(at)];
-  };
   double total = 0.0;
-  for (const auto f : faces_of_.at(node)) total += weight_in(f);
-  return weight_in(face) / total;
+  for (const auto f : faces_of_.at(node)) total += weight_in(node, f);
+  return weight_in(node, face) / total;
+}
+
+double DisplacementDrive::film_stiffness(std::size_t face) const {
+  const auto row = static_cast<Eigen::Index>(face);
+  return std::max(0.0, 2.0 * inputs_.pressure[row] / inputs_.gap[row]);
+}
+
+std::vector<std::vector<std::int64_t>> DisplacementDrive::driven_lines() const {
+  struct Place {
+    std::array<double, 6> axis;  ///< the transform's points a and b (a node's copy of its card)
+    double axial, radius;
+    std::int64_t node;
+  };
+  std::vector<Place> places;
+  std::vector<std::vector<std::int64_t>> lines;
+  for (const auto& [node, value] : prescribed_) {
+    const NodalTransform* transform = deck_.transform(node);
+    if (transform == nullptr || transform->type != 'C') {
+      lines.push_back({node});
+      continue;
+    }
+    const Eigen::Vector3d axis = (transform->b - transform->a).normalized();
+    const Eigen::Vector3d from = deck_.node(node) - transform->a;
+    const double axial = from.dot(axis);
+    const std::array<double, 6> points = {transform->a.x(), transform->a.y(), transform->a.z(),
+                                          transform->b.x(), transform->b.y(), transform->b.z()};
+    places.push_back({points, axial, (from - axial * axis).norm(), node});
+  }
+  std::sort(places.begin(), places.end(), [](const Place& x, const Place& y) {
+    return std::tie(x.axis, x.axial, x.radius) < std::tie(y.axis, y.axial, y.radius);
+  });
+  // Round-off apart (the sector's nodes are rotated copies) is one circle.
+  const auto same_circle = [](const Place& x, const Place& y) {
+    const double tolerance = 1e-9 * (std::abs(x.axial) + x.radius);
+    return x.axis == y.axis && std::abs(x.axial - y.axial) <= tolerance &&
+           std::abs(x.radius - y.radius) <= tolerance;
+  };
+  for (std::size_t i = 0; i < places.size(); ++i) {
+    if (i == 0 || !same_circle(places[i - 1], places[i])) lines.emplace_back();
+    lines.back().push_back(places[i].node);
+  }
+  return lines;
+}
+
+std::map<std::int64_t, double> DisplacementDrive::moves_by_line(
+    const std::map<std::int64_t, double>& imbalance) const {
+  std::map<std::int64_t, double> moves;
+  for (const auto& line : driven_lines()) {
+    double force = 0.0, weight = 0.0, stiffness = 0.0;
+    for (const auto node : line) {
+      force += imbalance.at(node);
+      for (const auto f : faces_of_.at(node)) {
+        weight += weight_in(node, f);
+        stiffness += weight_in(node, f) * film_stiffness(f);
+      }
+    }
+    // A serendipity face's corner alone takes a negative share of a uniform traction: such a
+    // node cannot move by its own imbalance (the faces' balance below can).
+    if (!(weight > 0.0)) return {};
+    const double traction = force / weight;
+    largest_imbalance_ = std::max(largest_imbalance_, std::abs(traction));
+    for (const auto node : line) moves[node] = traction / (stiffness / weight + surface_stiffness_);
+  }
+  return moves;
+}
+
+std::map<std::int64_t, double> DisplacementDrive::moves_by_face(
+    const std::map<std::int64_t, double>& imbalance) const {
+  // Per driven face, the traction whose nodal forces a face's driven nodes share: each node's
+  // imbalance split among its faces as a uniform traction's nodal force is, over the weight of
+  // the face's driven nodes (its area when all are driven; undriven nodes carry the film's
+  // load and have none). Exact for a uniform traction, and blind to a pattern whose shares
+  // cancel on every face (a reduced-integration element's hoop zigzag, which a least-squares
+  // fit to the consistent nodal forces would take for a traction).
+  std::map<std::size_t, double> face_move;
+  for (std::size_t f = 0; f < driven_face_.size(); ++f) {
+    if (!driven_face_[f]) continue;
+    const auto& face = loads_.geometry()[f];
+    double force = 0.0, weight = 0.0;
+    for (std::size_t i = 0; i < face.nodes.size(); ++i) {
+      const auto at = imbalance.find(face.nodes[i]);
+      if (at == imbalance.end()) continue;
+      force += at->second * share(face.nodes[i], f);
+      weight += face.weights[static_cast<Eigen::Index>(i)];
+    }
+    // Too little of the face driven to tell its traction (its corners alone, whose
+    // serendipity weights are negative): it does not move.
+    const double traction = weight > 0.1 * face.area ? force / weight : 0.0;
+    face_move[f] = traction / (film_stiffness(f) + surface_stiffness_);
+    largest_imbalance_ = std::max(largest_imbalance_, std::abs(traction));
+  }
+  // A driven node moves by its faces' moves, weighted by its shares in them.
+  std::map<std::int64_t, double> moves;
+  for (const auto& [node, value] : prescribed_)
+    for (const auto f : faces_of_.at(node))
+      if (driven_face_[f]) moves[node] += share(node, f) * face_move.at(f);
+  return moves;
 }
 
 RowMatrix DisplacementDrive::balance(const RowMatrix& displacement,
@@ -144,42 +246,25 @@ RowMatrix DisplacementDrive::balance(const RowMatrix& displacement,
     const double film_force = film == film_forces_.end() ? 0.0 : film->second.dot(direction(node));
     imbalance[node] = film_force - reaction(reaction_row_of.at(node), dof_ - 1);
   }
-  // Per driven face, the traction whose nodal forces a face's driven nodes share: each node's
-  // imbalance split among its faces as a uniform traction's nodal force is, over the weight of
-  // the face's driven nodes (its area when all are driven; undriven nodes carry the film's
-  // load and have none). Exact for a uniform traction, and blind to a pattern whose shares
-  // cancel on every face (a reduced-integration element's hoop zigzag, which a least-squares
-  // fit to the consistent nodal forces would take for a traction).
-  std::map<std::size_t, double> move;
+  // Each circle of driven nodes moves by its own imbalance: every node line along the body is
+  // balanced, so the coupling's fixed point is the nodal balance the loaded body would have.
+  // Moves per face balance only each face's resultant, and a pattern along the body that
+  // leaves every resultant alone (corner lines against mid-side lines) would stay as the
+  // coupling left it. Where a line cannot move by its own (see moves_by_line), per face.
   largest_imbalance_ = 0.0;
-  for (std::size_t f = 0; f < driven_face_.size(); ++f) {
-    if (!driven_face_[f]) continue;
-    const auto& face = loads_.geometry()[f];
-    double force = 0.0, weight = 0.0;
-    for (std::size_t i = 0; i < face.nodes.size(); ++i) {
-      const auto at = imbalance.find(face.nodes[i]);
-      if (at == imbalance.end()) continue;
-      force += at->second * share(face.nodes[i], f);
-      weight += face.weights[static_cast<Eigen::Index>(i)];
-    }
-    // Too little of the face driven to tell its traction (its corners alone, whose
-    // serendipity weights are negative): it does not move.
-    const double traction = weight > 0.1 * face.area ? force / weight : 0.0;
-    const auto row = static_cast<Eigen::Index>(f);
-    const double film_stiffness = std::max(0.0, 2.0 * inputs_.pressure[row] / inputs_.gap[row]);
-    move[f] = traction / (film_stiffness + surface_stiffness_);
-    largest_imbalance_ = std::max(largest_imbalance_, std::abs(traction));
+  std::map<std::int64_t, double> moves = moves_by_line(imbalance);
+  if (moves.empty()) {
+    largest_imbalance_ = 0.0;
+    moves = moves_by_face(imbalance);
   }
-  // A driven node moves by its faces' moves, weighted by its shares in them.
   RowMatrix result = displacement;
   for (const auto& [node, value] : prescribed_) {
     const auto output = row_of.find(node);
     if (output == row_of.end()) continue;  // driven, but not returned
-    double step = 0.0;
-    for (const auto f : faces_of_.at(node)) step += share(node, f) * move.at(f);
     const Eigen::Vector3d e = direction(node);
     const Eigen::Index row = output->second;
-    result.row(row) += (value + step - result.row(row).dot(e.transpose())) * e.transpose();
+    result.row(row) +=
+        (value + moves.at(node) - result.row(row).dot(e.transpose())) * e.transpose();
   }
   return result;
 }

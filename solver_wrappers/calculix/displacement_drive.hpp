@@ -13,11 +13,13 @@
 //      prescribed in later steps otherwise, and the wire slides), the deck's own *BOUNDARY
 //      cards again (OP=NEW dropped them), and the loads as consistent nodal forces, but none
 //      in a driven direction (ccx's reaction there is the force the structure takes).
-//   3. balance(): per driven face the traction q along the driven direction that the film
-//      gives beyond what the structure takes (the nodal imbalances, each split among a node's
-//      faces as a uniform traction's force is); the face moves by q / (K_film + K_structure),
+//   3. balance(): per line of driven nodes (a circle about a cylindrical *TRANSFORM's axis: a
+//      sector's hoop line; else a node) the traction q along the driven direction that the
+//      film gives beyond what the structure takes (the line's nodal imbalance over its nodes'
+//      share of a uniform traction); the line moves by q / (K_film + K_structure),
 //      K_film = 2 p / gap (a lubricant film's pressure goes as 1 / gap^2) and K_structure the
-//      case's `surface_stiffness`; a node by its faces' moves, weighted alike.
+//      case's `surface_stiffness`. Where a line's share is negative (a serendipity face's
+//      corner alone), per face instead: the face's imbalance, nodes moved by their faces'.
 // ccx's reactions are the nodal forces only on 3D models: on an axisymmetric (CAX) one they
 // are off by up to 53 % (examples/wire_drawing/reaction_probe.py), so the wrapper refuses it.
 #include <Eigen/Core>
@@ -69,14 +71,28 @@ class DisplacementDrive {
   RowMatrix balance(const RowMatrix& displacement, const RowMatrix& reaction) const;
 
   std::size_t driven_nodes() const { return prescribed_.size(); }
+  bool drives(std::int64_t node) const { return prescribed_.count(node) != 0; }
   /// The largest force imbalance per area of the last balance() (Pa), for messages.
   double largest_imbalance() const { return largest_imbalance_; }
 
  private:
   /// The driven direction at a node, global.
   Eigen::Vector3d direction(std::int64_t node) const;
+  /// The force a unit traction on `face` gives `node` (its shape function's integral there).
+  double weight_in(std::int64_t node, std::size_t face) const;
   /// The part of a node's force that `face` gives under a uniform traction on all its faces.
   double share(std::int64_t node, std::size_t face) const;
+  /// The film's stiffness per area on `face`: 2 p / gap.
+  double film_stiffness(std::size_t face) const;
+  /// The driven nodes in groups that move as one: a circle about the axis of their
+  /// cylindrical *TRANSFORM (a sector's hoop line, driven alike), else each node alone.
+  std::vector<std::vector<std::int64_t>> driven_lines() const;
+  /// The move of each driven node after one Newton step on each line's imbalance (empty if a
+  /// line's nodes take a negative share of a uniform traction), or on each face's.
+  std::map<std::int64_t, double> moves_by_line(
+      const std::map<std::int64_t, double>& imbalance) const;
+  std::map<std::int64_t, double> moves_by_face(
+      const std::map<std::int64_t, double>& imbalance) const;
   std::vector<std::string> model_boundary_cards(const InputDeck& deck) const;
 
   const InputDeck& deck_;
