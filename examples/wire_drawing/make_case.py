@@ -481,7 +481,7 @@ def solver_wrappers(p, prefix):
       interface_node_set: SURFACEN
       threads: {p['calculix']['threads']}                    # the film waits while the wire is solved
 {wire_drive_keys(p)}      timeout: 600
-{input_mappers(p)}    output_mapper:                # wire surface nodes (r, axis) -> film wall points (wedge)
+{input_mappers(p)}{round_trip_keys(p)}    output_mapper:                # wire surface nodes (r, axis) -> film wall points (wedge)
       type: linear
       components: [x, y]          # only the radial displacement moves the film: it slides
       directions: [x, z]          # across the wedge and along the axis, not radially: the film's
@@ -529,11 +529,20 @@ def input_mappers(p):
     return """    input_mapper:                 # a mapper per model part pair:
       - type: linear              # film wall points -> the wire's drivable nodes: the wall's
         directions: [y, z]        # position there, along the axis and across the wedge (an
-        max_distance: 1.0e-4      # interpolation, so that the output mapper's way back gives
-        unmatched: zero           # the wall again); zero beyond the film (not driven there)
+        max_distance: 1.0e-4      # interpolation, which exact_round_trip below corrects);
+        unmatched: zero           # zero beyond the film (not driven there)
         transformers:
           - {type: permutation, permutation: [1, 2, 0]}   # film (x, y, z) -> (y, z, x)
       - """ + faces.replace("\n      ", "\n        ")
+
+
+def round_trip_keys(p):
+    if not displacement_driven(p):
+        return ""
+    return """    exact_round_trip: [wall_displacement]   # the wall's position onto the nodes so that the
+                                  # output mapper gives it back exactly: the balance is then the
+                                  # coupling's fixed point (docs/mappers.md)
+"""
 
 
 def film_drive_keys(p):
