@@ -90,7 +90,8 @@ Eigen::MatrixXd ExactRoundTrip::round_trip_matrix() const {
 RowMatrix ExactRoundTrip::map(const RowMatrix& w, const RowMatrix& base) const {
   if (input_ == nullptr) throw std::logic_error("ExactRoundTrip::map called before build");
   if (w.rows() != points_ || w.cols() != components_ ||
-      (base.size() > 0 && base.rows() != static_cast<Eigen::Index>(rows_.size())))
+      (base.size() > 0 &&
+       (base.rows() != static_cast<Eigen::Index>(rows_.size()) || base.cols() != components_)))
     throw std::invalid_argument("ExactRoundTrip::map: w or base has the wrong shape");
   const Eigen::VectorXd target = flatten(w);
   if (reached_rows_.empty()) return to_inner(target);  // no driven node reaches a point

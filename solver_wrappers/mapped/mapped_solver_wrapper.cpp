@@ -235,11 +235,14 @@ class MappedSolverWrapper : public SolverWrapper {
   /// inner part holds too.
   void pair_round_trips() {
     std::vector<std::string> taken;
+    for (const auto& pair : input_pairs_)
+      for (const auto& variable : variables_of(inner_->input_interface(), pair.inner))
+        if (std::find(taken.begin(), taken.end(), variable) == taken.end())
+          taken.push_back(variable);
     for (const auto& variable : exact_variables_) {
       bool found = false;
       for (auto& pair : input_pairs_) {
         const auto variables = variables_of(inner_->input_interface(), pair.inner);
-        taken.insert(taken.end(), variables.begin(), variables.end());
         if (std::find(variables.begin(), variables.end(), variable) == variables.end()) continue;
         found = true;
         pair.back = output_pair_onto(pair.outer, variable);
@@ -315,8 +318,7 @@ class MappedSolverWrapper : public SolverWrapper {
         base.row(k) += inner_output.values(nodes, "displacement").row(k);
     }
     round_trip.hold(held);
-    const RowMatrix w = input_.values(pair.outer, variable);
-    return round_trip.map(w, base.cols() == w.cols() ? base : RowMatrix());
+    return round_trip.map(input_.values(pair.outer, variable), base);
   }
 
   /// `coverage`, which the inner solver takes and the other side does not give: the input
