@@ -193,7 +193,10 @@ std::map<std::int64_t, double> DisplacementDrive::moves_by_line(
     if (!(weight > 0.0)) return {};
     const double traction = force / weight;
     largest_imbalance_ = std::max(largest_imbalance_, std::abs(traction));
-    for (const auto node : line) moves[node] = traction / (stiffness / weight + surface_stiffness_);
+    // The film's stiffness over the line's faces, weighted as the traction is (a corner's
+    // negative weight could take it below zero next to a steep pressure drop: not below).
+    const double film = std::max(0.0, stiffness / weight);
+    for (const auto node : line) moves[node] = traction / (film + surface_stiffness_);
   }
   return moves;
 }
