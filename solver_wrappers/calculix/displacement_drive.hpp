@@ -7,8 +7,8 @@
 //   1. plan(): a face is driven when the other solver covers at least half of it; a node when
 //      every interface face it belongs to is driven. Its prescribed value in the driven
 //      direction is the other solver's wall position at the node (`wall_displacement`, given
-//      per drivable node: interpolated at the node, so that mapping the returned position back
-//      gives the wall again; a mean over faces would not, and the balance would be off).
+//      per drivable node, mapped so that the returned position maps back onto the wall:
+//      the mapped wrapper's exact_round_trip; the nodes report whether they were driven).
 //   2. write(): *BOUNDARY, OP=NEW with the driven nodes (ccx keeps a prescribed node
 //      prescribed in later steps otherwise, and the wire slides), the deck's own *BOUNDARY
 //      cards again (OP=NEW dropped them), and the loads as consistent nodal forces, but none
