@@ -30,7 +30,7 @@ void ExactRoundTrip::build(const Mapper& input, const std::vector<Eigen::Index>&
   points_ = points;
   components_ = components;
   held_.assign(rows_.size(), false);
-  factorise();
+  factorised_ = false;  // in the first map(): the step's hold() usually comes first
 }
 
 void ExactRoundTrip::hold(const std::vector<bool>& held) {
@@ -38,10 +38,11 @@ void ExactRoundTrip::hold(const std::vector<bool>& held) {
     throw std::invalid_argument("ExactRoundTrip::hold: one flag per inner output node expected");
   if (held == held_) return;
   held_ = held;
-  factorise();
+  factorised_ = false;
 }
 
 void ExactRoundTrip::factorise() {
+  factorised_ = true;
   plain_defect_ = defect_ = 0.0;
   const Eigen::MatrixXd matrix = round_trip_matrix();
   // Only the entries the round trip reaches take part (a component that the output mapper
@@ -87,12 +88,13 @@ Eigen::MatrixXd ExactRoundTrip::round_trip_matrix() const {
   return matrix;
 }
 
-RowMatrix ExactRoundTrip::map(const RowMatrix& w, const RowMatrix& base) const {
+RowMatrix ExactRoundTrip::map(const RowMatrix& w, const RowMatrix& base) {
   if (input_ == nullptr) throw std::logic_error("ExactRoundTrip::map called before build");
   if (w.rows() != points_ || w.cols() != components_ ||
       (base.size() > 0 &&
        (base.rows() != static_cast<Eigen::Index>(rows_.size()) || base.cols() != components_)))
     throw std::invalid_argument("ExactRoundTrip::map: w or base has the wrong shape");
+  if (!factorised_) factorise();
   const Eigen::VectorXd target = flatten(w);
   if (reached_rows_.empty()) return to_inner(target);  // no driven node reaches a point
   const Eigen::VectorXd missed = target - round_trip(target, base);

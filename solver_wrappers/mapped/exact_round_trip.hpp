@@ -32,14 +32,14 @@ class ExactRoundTrip {
   void build(const Mapper& input, const std::vector<Eigen::Index>& rows, const Mapper& output,
              Eigen::Index points, int components);
 
-  /// Which inner output nodes the inner solver holds (sets itself); refactorises if that
-  /// changed. None until called.
+  /// Which inner output nodes the inner solver holds (sets itself). None after build().
   void hold(const std::vector<bool>& held);
 
   /// v at the inner input nodes, one row each, for w at the other side's points. `base`: per
   /// inner output node, what the output mapper adds to a driven node's value (the frame's
   /// motion) and a held node has (its displacement, plus that motion); empty: zero.
-  RowMatrix map(const RowMatrix& w, const RowMatrix& base = RowMatrix()) const;
+  /// Factorises the round trip first if build() or hold() changed it.
+  RowMatrix map(const RowMatrix& w, const RowMatrix& base = RowMatrix());
 
   /// The largest |L R A w - w| of the input mapper alone, and |L R v - w| of map(), in the
   /// last map(): how far the plain round trip misses, and what is left (at a step's
@@ -59,12 +59,13 @@ class ExactRoundTrip {
   const Mapper* output_ = nullptr;
   std::vector<Eigen::Index> rows_;
   std::vector<bool> held_;
+  bool factorised_ = false;
   Eigen::Index points_ = 0;
   int components_ = 0;
   /// The round trip on the entries it reaches (nonzero rows and columns), factorised.
   std::vector<Eigen::Index> reached_rows_, reached_columns_;
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> solver_;
-  mutable double plain_defect_ = 0.0, defect_ = 0.0;
+  double plain_defect_ = 0.0, defect_ = 0.0;
 };
 
 }  // namespace cocopp

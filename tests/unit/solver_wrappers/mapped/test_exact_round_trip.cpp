@@ -8,6 +8,7 @@
 #include "solver_wrappers/mapped/exact_round_trip.hpp"
 #include "solver_wrappers/solver_wrapper.hpp"
 #include "tests/support/error_message.hpp"
+#include "tests/support/linear_solvers.hpp"
 
 namespace cocopp {
 namespace {
@@ -110,9 +111,9 @@ TEST(ExactRoundTrip, HeldNodesEnterAsTheyAre) {
 /// return it as their displacement. With `holds_ends: true` it does not drive its end nodes:
 /// they return the bent wall of Sides::nodal_wall (as loaded nodes would their own
 /// displacement), and the nodes report `driven`.
-class Film : public SolverWrapper {
+class Film : public testing::InProcessSolver {
  public:
-  explicit Film(const RowMatrix& wall) {
+  explicit Film(const RowMatrix& wall) : InProcessSolver("film", Interface(), Interface()) {
     auto part = std::make_shared<ModelPart>();
     part->name = "film";
     part->coordinates = on_axis(61, 0.0, 1.0);
@@ -121,24 +122,13 @@ class Film : public SolverWrapper {
     output_ = Interface({{part, {"wall_displacement"}}});
     output_.values("film", "wall_displacement") = wall;
   }
-  const std::string& name() const override { return name_; }
-  void initialize() override {}
-  const Interface& input_interface() const override { return input_; }
-  const Interface& output_interface() const override { return output_; }
-  void initialize_step(int, double) override {}
   const Interface& solve(const Interface&) override { return output_; }
-  void finalize_step() override {}
-  void output_step() override {}
-  void finalize() override {}
-
- private:
-  std::string name_ = "film";
-  Interface input_, output_;
 };
 
-class WallNodes : public SolverWrapper {
+class WallNodes : public testing::InProcessSolver {
  public:
-  WallNodes(const Settings& settings, const RunSettings&) {
+  WallNodes(const Settings& settings, const RunSettings&)
+      : InProcessSolver("wall", Interface(), Interface()) {
     auto nodes = std::make_shared<ModelPart>();
     nodes->name = "nodes";
     nodes->coordinates = Sides().wire;
@@ -154,11 +144,6 @@ class WallNodes : public SolverWrapper {
     output_ = Interface({{returned, holds_ends_ ? std::vector<std::string>{"displacement", "driven"}
                                                 : std::vector<std::string>{"displacement"}}});
   }
-  const std::string& name() const override { return name_; }
-  void initialize() override {}
-  const Interface& input_interface() const override { return input_; }
-  const Interface& output_interface() const override { return output_; }
-  void initialize_step(int, double) override {}
   const Interface& solve(const Interface& input) override {
     auto displacement = output_.values(output_.parts()[0].model_part->name, "displacement");
     displacement = input.values("nodes", "wall_displacement");
@@ -173,14 +158,9 @@ class WallNodes : public SolverWrapper {
     }
     return output_;
   }
-  void finalize_step() override {}
-  void output_step() override {}
-  void finalize() override {}
 
  private:
-  std::string name_ = "wall";
   bool holds_ends_ = false;
-  Interface input_, output_;
 };
 
 COCOPP_REGISTER(SolverWrapperRegistry, "test_wall_nodes", WallNodes)
