@@ -27,7 +27,8 @@ import numpy as np
 
 import make_case
 from wire_results import (Frd, exit_force, film_forces, film_profile, integration_point_check,
-                          made_with, step_files, surface, wire_forces)
+                          made_with, sector_wire_forces, step_files, surface,
+                          wire_forces)
 
 HERE = pathlib.Path(__file__).resolve().parent
 PAPER_ITERATIONS = 5.33
@@ -76,13 +77,22 @@ def run_checks(case, p, refine, step=None):
     film_axial = forces["shear_axial"] + forces["pressure_axial"]
     results["force_balance_error_film"] = (pull - (wire["back_force"] - film_axial)) / pull
     summary = json.loads((case / "results" / "case.summary.json").read_text())
-    # (Read for the axisymmetric wire's loads file only: a sector's has other faces, and a wire
-    # driven by displacement takes nodal forces.)
     axisymmetric = p["mesh"].get("wire_model", "axisymmetric") == "axisymmetric"
-    if (results["step"] == results["steps"] and summary.get("status") in ("completed", "stalled")
-            and axisymmetric):
-        # The loads ccx applied in the last coupling iteration, on the wire's moved surface
-        # (after a run that stopped, the loads file is of the step that failed).
+    last_of_run = (results["step"] == results["steps"]
+                   and summary.get("status") in ("completed", "stalled"))
+    # The loads ccx applied in the last coupling iteration (after a run that stopped, the loads
+    # file is of the step that failed).
+    if last_of_run and not axisymmetric:
+        # A sector takes them as nodal forces, and where it is driven by displacement the film's
+        # pressure as the drive's reactions: only the axial and the radial sums compare.
+        applied = sector_wire_forces(case, frd)
+        results.update({f"wire_{k}": v for k, v in applied.items()})
+        results["force_balance_error"] = (pull - (wire["back_force"] - applied["axial"])) / pull
+        results["transfer_error_axial"] = applied["axial"] / film_axial - 1
+        # (The film's pressure pushes inwards, along -r.)
+        results["transfer_error_radial"] = -applied["radial"] / forces["pressure_radial"] - 1
+    if last_of_run and axisymmetric:
+        # On the wire's moved surface.
         applied = wire_forces(case, frd)
         results.update({f"wire_{k}": v for k, v in applied.items()})
         wire_axial = applied["shear_axial"] + applied["pressure_axial"]
@@ -136,7 +146,13 @@ def report(results):
         f"equivalent / yield at surface  {r['max_equivalent_over_yield']:.4f} at most "
         f"(largest plastic strain {r['max_plastic_strain_surface']:.4f}; {r['equivalent_stress_at']})",
     ]
-    if "force_balance_error" in r:
+    if "transfer_error_axial" in r:
+        lines += [
+            f"axial force balance, wire      {100 * r['force_balance_error']:+.4f} % (as applied: "
+            f"{r['wire_axial']:.2f} N axial)",
+            f"film load reaching the wire    axial {r['transfer_error_axial']:+.2e}, radial "
+            f"{r['transfer_error_radial']:+.2e} (relative difference)"]
+    elif "force_balance_error" in r:
         lines += [
             f"axial force balance, wire      {100 * r['force_balance_error']:+.4f} % (as applied: "
             f"shear {r['wire_shear_axial']:.2f} N, pressure {r['wire_pressure_axial']:.2f} N)",

@@ -182,8 +182,8 @@ def face_lengths(z):
 
 def film_forces(f, film, schedule, row):
     """The film's load on the wire at `row`, over the whole circumference: (axial force of the
-    shear, axial force of the pressure on the sloped wire surface, radial load = integral of
-    the pressure, integral of the shear magnitude). The wire surface's slope comes from its
+    shear, axial force of the pressure on the sloped wire surface, integral of the pressure, its
+    radial part (inwards), integral of the shear magnitude). The wire surface's slope comes from its
     radial displacement at the film's wall points."""
     z, pressure, shear = loads_profile(f, row)
     wall_z, _, radial = film_profile(f, film, schedule, row)
@@ -193,6 +193,7 @@ def film_forces(f, film, schedule, row):
     return {"shear_axial": float(np.sum(shear * area)),
             "pressure_axial": float(np.sum(pressure * slope * area)),
             "pressure_total": float(np.sum(pressure * area * np.sqrt(1 + slope ** 2))),
+            "pressure_radial": float(np.sum(pressure * area)),
             "shear_total": float(np.sum(np.abs(shear) * area))}
 
 
@@ -235,8 +236,9 @@ def restart_ccx(structure, work, ccx):
 
 def applied_loads(loads_file):
     """The interface loads of a coupling iteration as the calculix wrapper wrote them:
-    {element: pressure} of the *DLOAD P2 lines and the summed *CLOAD per direction."""
-    pressures, forces, mode = {}, {1: 0.0, 2: 0.0}, None
+    {element: pressure} of the *DLOAD P2 lines and the summed *CLOAD per direction (a
+    sector's in its nodes' cylindrical axes: 1 radial, 2 hoop, 3 axial)."""
+    pressures, forces, mode = {}, {1: 0.0, 2: 0.0, 3: 0.0}, None
     with open(loads_file) as f:
         for line in f:
             if line.startswith("*"):
@@ -248,6 +250,36 @@ def applied_loads(loads_file):
             elif mode == "CLOAD" and len(fields) == 3:
                 forces[int(fields[1])] += float(fields[2])
     return pressures, forces
+
+
+def sector_wire_forces(case, frd):
+    """The film's load as ccx took it on a sector wire in the last coupling iteration: the
+    axial sum of the *CLOAD (shear and the pressure's axial part; a wire driven by displacement
+    takes no force in its driven direction) and the radial sum of the *CLOAD and of the reaction
+    forces at the driven nodes (the film's pressure carried by the drive), whole ring."""
+    structure = pathlib.Path(case) / "structure"
+    _, forces = applied_loads(structure / "cocopp_loads.inp")
+    ring = 2 * np.pi / sector_angle(frd)
+    driven = driven_nodes(structure / "cocopp_loads.inp")
+    rows = np.isin(frd.ids, list(driven))
+    xyz = frd.coordinates[rows]
+    radial_axis = xyz[:, [0, 2]] / np.linalg.norm(xyz[:, [0, 2]], axis=1)[:, None]
+    reaction = np.sum(frd.values("FORC")[rows][:, [0, 2]] * radial_axis)
+    return {"axial": ring * forces[3], "radial": ring * (forces[1] + reaction)}
+
+
+def driven_nodes(loads_file):
+    """The nodes a wire driven by displacement had prescribed (the loads file's *BOUNDARY,
+    OP=NEW block before the deck's own boundaries)."""
+    nodes, inside = set(), False
+    with open(loads_file) as f:
+        for line in f:
+            if line.startswith("*"):
+                inside = line.upper().startswith("*BOUNDARY, OP=NEW")
+                continue
+            if inside:
+                nodes.add(int(line.split(",")[0]))
+    return nodes
 
 
 def wire_forces(case, frd):
