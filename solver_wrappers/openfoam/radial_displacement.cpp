@@ -44,10 +44,9 @@ class cocoppRadialDisplacementPointPatchVectorField : public fixedValuePointPatc
       FatalIOErrorInFunction(dict) << "axis must not be zero" << exit(FatalIOError);
     axis_ /= mag(axis_);
     directions_ = radial_directions(dict);
-    if (dict.found("value"))
-      Field<vector>::operator=(Field<vector>("value", dict, p.size()));
-    else
-      updateCoeffs();
+    // The base has read `value` where there is one (a restart's time directory has the last
+    // one); a second read of a nonuniform list fails, its token taken by the first.
+    if (!dict.found("value")) updateCoeffs();
   }
 
   cocoppRadialDisplacementPointPatchVectorField(

@@ -114,5 +114,33 @@ TEST_F(FilmBoundaryConditions, DieMovesRadiallyByItsSchedule) {
     }
 }
 
+// A restart (cocopp run --restart) reads the die's last value back from its time directory,
+// a nonuniform list there, and goes on with the schedule.
+TEST_F(FilmBoundaryConditions, DieRestartsFromAWrittenTime) {
+  step(1, 0.0);
+  step(2, 0.0);
+  wrapper_->finalize();
+  RunSettings run;
+  run.delta_t = kDeltaT;
+  run.case_directory = directory_.path();
+  run.timestep_start = 2;
+  const Settings settings = Settings::load_string(
+      "type: openfoam\nname: film\nworking_directory: film\nboundary_names: [wire]\n"
+      "timeout: 60\n",
+      "case.yaml");
+  wrapper_ = SolverWrapperRegistry::instance().create(settings, run);
+  wrapper_->initialize();
+  step(3, 0.0);
+  const auto initial = read_list_file(directory_ / "film/constant/polyMesh/points");
+  const auto moved = read_list_file(directory_ / "film/0.0003/polyMesh/points");
+  std::size_t die_points = 0;
+  for (std::size_t i = 0; i < initial.size() / 3; ++i)
+    if (std::abs(radius(initial, i) - kDie) < 1e-12) {
+      EXPECT_NEAR(radius(moved, i), kDie + kClosing * 3 * kDeltaT, 1e-15) << "point " << i;
+      ++die_points;
+    }
+  EXPECT_EQ(die_points, 42u);
+}
+
 }  // namespace
 }  // namespace cocopp
