@@ -287,8 +287,15 @@ def sector_wire_deck(p, refine):
     lines.append("*ELEMENT, TYPE=C3D15, ELSET=EALL")
     lines.extend(connectivity(WEDGE15, 0, q) for q in range(axial))
     brick = {"CAX8R": "C3D20R", "CAX8": "C3D20"}[mesh["wire_element"]]
-    lines.append(f"*ELEMENT, TYPE={brick}, ELSET=EALL")
-    lines.extend(connectivity(HEX20, m, q) for q in range(axial) for m in range(1, radial))
+    # The outer layer, where the film's loads and the drive act, may be fully integrated: a
+    # loaded node next to driven ones (the film's edge) then cannot take C3D20R's zero-energy
+    # hoop mode, whose flow under a yielding skin makes ccx's Newton stall and cut back.
+    skin = "C3D20" if mesh["full_integration_skin"] else brick
+    cards = ([(brick, range(1, radial))] if skin == brick else
+             [(brick, range(1, radial - 1)), (skin, [radial - 1])])
+    for kind, layers in cards:
+        lines.append(f"*ELEMENT, TYPE={kind}, ELSET=EALL")
+        lines.extend(connectivity(HEX20, m, q) for q in range(axial) for m in layers)
 
     def node_set(name, nodes):
         lines.append(f"*NSET, NSET={name}")
@@ -419,6 +426,7 @@ def case_file(p):
 settings:
   delta_t: {time['delta_t']:.17g}
   number_of_timesteps: {time['steps']}
+  state_interval: {time['state_interval']}               # a state to restart from (cocopp run --restart)
 coupled_solver:
   type: {coupling['type']}                      # interface quasi-Newton, as the paper
   omega: {coupling['omega']:g}                     # relaxation of a step's first update
