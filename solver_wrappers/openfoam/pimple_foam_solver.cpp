@@ -457,12 +457,34 @@ void PimpleFoamSolver::solve_pimple() {
     while (pimple.correct()) {
 #include "pEqn.H"
     }
+    check_not_diverging(pimple.corr());
     if (pimple.turbCorr()) {
       laminarTransport.correct();
       turbulence->correct();
     }
   }
   (void)runTime;  // used by some of the included files only
+}
+
+void PimpleFoamSolver::check_not_diverging(label corrector) const {
+  // The volume the absolute fluxes fail to balance in a time step, relative to the cells'
+  // volume (pimpleFoam's "sum local" continuity error): about 1e-11 in a converged film step,
+  // and it grows without bound where the outer loop diverges on an input it cannot take (a
+  // coupling iterate that squeezes a thin film too far). Reject such an input before the
+  // floating-point overflow kills the solver, so that the coupler can step back.
+  const scalar error =
+      run_time_->deltaTValue() *
+      mag(fvc::div(fvc::absolute(*phi_, *U_)))().weightedAverage(mesh_->V()).value();
+  const scalar fastest = gMax(mag(U_->primitiveField())());
+  if (error < 1 && std::isfinite(error) && std::isfinite(fastest)) return;
+  OStringStream message;
+  message << "the flow diverged in coupling iteration " << iteration_ << " at time "
+          << run_time_->timeName() << ": after PIMPLE outer corrector " << corrector
+          << " the continuity error is " << error << " of the cells' volume per time step "
+          << "(fastest velocity " << fastest
+          << "). What to change: a smaller time step, a wall that moves less per time step, or "
+             "(for a coupling iterate far off) a smaller first relaxation (coupled_solver.omega)";
+  throw sdk::InputRejected(message.str());
 }
 
 void PimpleFoamSolver::check_cells_not_inverted() const {

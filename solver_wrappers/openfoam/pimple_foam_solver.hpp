@@ -116,6 +116,8 @@ class PimpleFoamSolver : public sdk::Solver {
   /// Rejects the input (sdk::InputRejected) if the mesh motion left a cell with no or negative
   /// volume.
   void check_cells_not_inverted() const;
+  /// Rejects the input (sdk::InputRejected) once the outer loop diverges on it.
+  void check_not_diverging(label corrector) const;
   std::vector<double> loads() const;
   /// Per face of interface patch `id`: the distance from its centre to the gap patch (on every
   /// rank's faces of it).
