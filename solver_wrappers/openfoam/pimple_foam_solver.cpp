@@ -456,8 +456,8 @@ void PimpleFoamSolver::solve_pimple() {
 #include "UEqn.H"
     while (pimple.correct()) {
 #include "pEqn.H"
+      check_not_diverging(pimple.corr());
     }
-    check_not_diverging(pimple.corr());
     if (pimple.turbCorr()) {
       laminarTransport.correct();
       turbulence->correct();

@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 
+#include "solver_wrappers/solver_error.hpp"
 #include "solver_wrappers/solver_wrapper.hpp"
 #include "tests/integration/openfoam/openfoam_files.hpp"
 #include "tests/support/solver_wrapper_case.hpp"
@@ -140,6 +142,41 @@ TEST_F(FilmBoundaryConditions, DieRestartsFromAWrittenTime) {
       ++die_points;
     }
   EXPECT_EQ(die_points, 42u);
+}
+
+// An input the film's flow diverges on is rejected with the reason, before a floating-point
+// exception can kill the solver, so that the coupler can step back. Here the outer loop is
+// made to diverge by over-relaxing the momentum equation (1.15: its continuity error grows
+// over a few correctors, as on the wire drawing case's step 40; 1.1 converges, and from 1.2 the
+// velocity overflows within a corrector while the continuity error is still small, which the
+// check does not see: the film then still dies of SIGFPE, with its log's last lines).
+TEST(FilmSolver, RejectsAnInputItsFlowDivergesOn) {
+  TemporaryDirectory directory;
+  testing::make_case(
+      std::filesystem::path(COCOPP_TEST_SOURCE_DIR) / "tests/integration/openfoam/film",
+      directory / "film");
+  {
+    std::ofstream solution(directory / "film/system/fvSolution", std::ios::app);
+    solution << "PIMPLE { nOuterCorrectors 100; }\n"
+                "relaxationFactors { equations { U 1.15; UFinal 1.15; } }\n";
+  }
+  auto film = testing::initialized_wrapper(
+      "type: openfoam\nname: film\nworking_directory: film\nboundary_names: [wire]\n"
+      "timeout: 60\n",
+      directory.path(), kDeltaT);
+  Interface input = film->input_interface();
+  input.set_data(Eigen::VectorXd::Zero(input.size()));
+  film->initialize_step(1, kDeltaT);
+  try {
+    film->solve(input);
+    FAIL() << "no SolverRejectedInput";
+  } catch (const SolverRejectedInput& e) {
+    EXPECT_NE(std::string(e.what()).find("the flow diverged in coupling iteration 1"),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("What to change"), std::string::npos) << e.what();
+  }
+  film->finalize();
 }
 
 }  // namespace
