@@ -7,7 +7,8 @@ CASE_DIR is the case directory run.sh wrote (default results/case). The checks a
 last time step (or --step N) from the coupler's results file and the wire's .frd file of that
 step; they are printed and written to CASE_DIR/checks.json:
 - coupling iterations per step against the paper's 5.33;
-- film thickness at the end of the die's entry cone against Wilson and Walowit's inlet-zone
+- film thickness where the die's approach ends (the entry cone and its rounded transition into
+  the bearing) against Wilson and Walowit's inlet-zone
   estimate h0 = 3 eta U / ((Y - sigma_b) tan alpha);
 - drawing stress (exit force over the drawn cross section) against the ideal-work estimate
   Y ln(A0/A1) + sigma_b and Sachs' estimate with the friction the film computed;
@@ -59,7 +60,10 @@ def run_checks(case, p, refine, step=None):
         results["paper_iterations_per_step"] = PAPER_ITERATIONS
 
         z, thickness, radial = film_profile(f, film, schedule, row)
-        results["film_thickness_at_cone_end"] = float(np.interp(film.entry, z, thickness))
+        # Where the die's approach ends and the bearing begins (the cone's end, or the end of
+        # the rounded transition after it).
+        approach_end = film.entry + film.transition
+        results["film_thickness_at_cone_end"] = float(np.interp(approach_end, z, thickness))
         results["film_thickness_min"] = float(np.min(thickness))
         back_stress = wire["back_force"] / (math.pi * wire["radius"] ** 2)
         alpha = math.radians(die["half_angle_degrees"])

@@ -57,6 +57,7 @@ class Film:
         self.bearing = die["bearing_length"]
         self.gap = die["film_thickness"]
         self.slope = math.tan(math.radians(die["half_angle_degrees"]))
+        self.transition = die.get("transition_length", 0.0)  # cases made before it: sharp
         self.half_wedge = math.radians(mesh["wedge_degrees"] / 2)
         factor = 2 if refine else 1
         axial = factor * mesh["film_axial_cells"]
@@ -65,8 +66,16 @@ class Film:
         self.radial_cells = factor * mesh["film_radial_cells"]
 
     def die_radius(self, z):
-        """The die's radius at axial position z (0: film inlet), before it moves."""
-        return self.radius + self.gap + self.slope * max(self.entry - z, 0.0)
+        """The die's radius at axial position z (0: film inlet), before it moves. With a
+        transition length L the cone meets the bearing through a parabola over the bearing's
+        first L, tangent to both (the cone raised by slope L / 2 to meet it)."""
+        bearing = self.radius + self.gap
+        if z <= self.entry:
+            return bearing + self.slope * (self.entry - z + self.transition / 2)
+        into = z - self.entry
+        if into < self.transition:
+            return bearing + self.slope * (self.transition - into) ** 2 / (2 * self.transition)
+        return bearing
 
     @property
     def length(self):
@@ -102,6 +111,13 @@ def block_mesh_dict(film):
     def faces(pattern):
         return " ".join("(" + " ".join(str(4 * k + i) for i in pattern(k)) + ")" for k in (0, 1))
 
+    # The rounded transition: the die's two edges of the bearing block follow the parabola.
+    edges = ""
+    if film.transition > 0:
+        samples = [film.entry + film.transition * i / 40 for i in range(1, 40)]
+        for side, (a, b) in ((1, (5, 9)), (-1, (6, 10))):
+            points = " ".join(wedge_point(film.die_radius(z), z, side, film) for z in samples)
+            edges += f"    polyLine {a} {b} ({points})\n"
     wire = faces(lambda k: [0, 4, 7, 3])
     die = faces(lambda k: [1, 2, 6, 5])
     front = faces(lambda k: [0, 1, 5, 4])
@@ -111,7 +127,7 @@ def block_mesh_dict(film):
             "// entry cone and a bearing, axisymmetric wedge about the z axis.\nscale 1;\n\n"
             "vertices\n(\n" + "\n".join("    " + v for v in vertices) + "\n);\n\n"
             "blocks\n(\n" + hex_block(0, film.entry_cells) + "\n" +
-            hex_block(1, film.bearing_cells) + "\n);\n\nboundary\n(\n"
+            hex_block(1, film.bearing_cells) + "\n);\n\nedges\n(\n" + edges + ");\n\nboundary\n(\n"
             f"    wire   {{ type wall;  faces ({wire}); }}\n"
             f"    die    {{ type wall;  faces ({die}); }}\n"
             "    inlet  { type patch; faces ((0 1 2 3)); }\n"

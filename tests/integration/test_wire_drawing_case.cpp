@@ -1,5 +1,7 @@
-// The wire drawing case (examples/wire_drawing) coupled end to end, coarse and short: the film
-// (3 x 50 cells) and the wire (4 x 153 CAX8R) through the sliding interface for 16 time steps,
+// The wire drawing case (examples/wire_drawing) coupled end to end, coarse and short: the case
+// as it ships (the wire a sector driven by displacement), 12 steps; and the paper's own coupling
+// of the wire, the film (3 x 50 cells) and the wire (4 x 153 CAX8R) loaded by it through the
+// sliding interface for 16 time steps,
 // the die held for 2 and then closing at the paper's rate, so that the wire starts to yield
 // under the die. Checks that the run completes with the paper's coupling (IQN-ILS, 0.01 um) in a
 // few iterations per step; that the film is where Wilson and Walowit's inlet estimate puts it;
@@ -13,6 +15,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <string>
+#include <vector>
 
 #include "coupler/results/results_reader.hpp"
 #include "tests/integration/run_helpers.hpp"
@@ -26,36 +31,64 @@ namespace fs = std::filesystem;
 // Bands around this test's run (measured: 5.69 on average, at most 9; docs/wire-drawing.md).
 constexpr double kAverageIterationsAtMost = 7.0, kIterationsAtMost = 12.0;
 
-TEST(WireDrawingCase, CoarseShortRunCouplesFilmAndWire) {
-  testing::TemporaryDirectory directory;
-  testing::write_wire_drawing_case(
-      directory.path(),
-      "--set mesh.wire_radial_elements=4 --set mesh.wire_axial_elements=153"
-      " --set mesh.film_axial_cells=50 --set mesh.film_radial_cells=3"
-      " --set time.held_steps=2");
-  testing::edit(directory / "case.yaml", "number_of_timesteps: 80", "number_of_timesteps: 16");
+const std::string kCoarseMeshes =
+    "--set mesh.wire_radial_elements=4 --set mesh.wire_axial_elements=153"
+    " --set mesh.film_axial_cells=50 --set mesh.film_radial_cells=3";
+
+/// The case of make_case.py `arguments` run for `steps` steps in `directory`, every step
+/// converged; its iterations per step (printed: all, their mean and largest).
+std::vector<double> run_case(const fs::path& directory, const std::string& arguments, int steps) {
+  testing::write_wire_drawing_case(directory, arguments);
+  testing::edit(directory / "case.yaml", "number_of_timesteps: 80",
+                "number_of_timesteps: " + std::to_string(steps));
   const testing::CommandResult run =
       testing::run_cocopp("run -q " + (directory / "case.yaml").string());
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  const auto summary = testing::read_json(directory / "results/case.summary.json");
+  EXPECT_TRUE(summary["unconverged_steps"].empty()) << summary["unconverged_steps"];
   const ResultsReader results(directory / "results/case.h5");
   EXPECT_EQ(results.status(), "completed");
-  ASSERT_EQ(results.steps().size(), 16u);
   const auto iterations = results.dataset("steps/iterations").values;
-  double total = 0.0, most = 0.0;
-  for (double n : iterations) total += n, most = std::max(most, n);
-  std::printf("iterations per step: %.2f on average, at most %.0f\n", total / 16, most);
-  EXPECT_LE(total / 16, kAverageIterationsAtMost);
-  EXPECT_LE(most, kIterationsAtMost);
+  if (iterations.empty()) return iterations;
+  for (double n : iterations) std::printf("%.0f ", n);
+  std::printf("iterations per step: %.2f on average, at most %.0f\n",
+              std::accumulate(iterations.begin(), iterations.end(), 0.0) / iterations.size(),
+              *std::max_element(iterations.begin(), iterations.end()));
+  return iterations;
+}
 
-  // The expert's checks (examples/wire_drawing/checks.py) at the last step.
-  // (Through sh -c: run_in sends the command's own output to log.setup.)
-  testing::run_in(directory.path(), "sh -c '/usr/bin/python3 " +
-                                        (testing::kWireDrawingExample / "checks.py").string() +
-                                        " . > checks.txt'");
-  const auto checks = testing::read_json(directory / "checks.json");
-  const auto number = [&](const char* key) { return checks.at(key).get<double>(); };
+double mean(const std::vector<double>& values) {
+  return std::accumulate(values.begin(), values.end(), 0.0) / values.size();
+}
+
+/// The expert's checks (examples/wire_drawing/checks.py) of the run in `directory` at its last
+/// step, printed. (Through sh -c: run_in sends the command's own output to log.setup.)
+nlohmann::json checks_of(const fs::path& directory) {
+  testing::run_in(directory, "sh -c '/usr/bin/python3 " +
+                                 (testing::kWireDrawingExample / "checks.py").string() +
+                                 " . > checks.txt'");
   std::printf("%s\n", testing::read_text(directory / "checks.txt").c_str());
+  return testing::read_json(directory / "checks.json");
+}
+
+/// The figures of docs/wire-drawing.md come from plot.py: it draws the run in `directory` too.
+void expect_plot_draws(const fs::path& directory) {
+  testing::run_in(
+      directory,
+      "/usr/bin/python3 " + (testing::kWireDrawingExample / "plot.py").string() + " . -o plot.png");
+  EXPECT_GT(fs::file_size(directory / "plot.png"), 10000u);
+}
+
+TEST(WireDrawingCase, CoarseShortRunCouplesFilmAndWire) {
+  testing::TemporaryDirectory directory;
+  const auto iterations = run_case(
+      directory.path(), kCoarseMeshes + " --set time.held_steps=2" + testing::kLoadDrivenWire, 16);
+  ASSERT_EQ(iterations.size(), 16u);
+  EXPECT_LE(mean(iterations), kAverageIterationsAtMost);
+  EXPECT_LE(*std::max_element(iterations.begin(), iterations.end()), kIterationsAtMost);
+
+  const auto checks = checks_of(directory.path());
+  const auto number = [&](const char* key) { return checks.at(key).get<double>(); };
   // The film at the end of the entry cone: of the order of the inlet-zone estimate.
   EXPECT_GT(number("film_thickness_at_cone_end"), 0.7 * number("wilson_walowit_h0"));
   EXPECT_LT(number("film_thickness_at_cone_end"), 1.6 * number("wilson_walowit_h0"));
@@ -72,11 +105,7 @@ TEST(WireDrawingCase, CoarseShortRunCouplesFilmAndWire) {
   EXPECT_GT(number("max_plastic_strain_surface"), 1e-4);
   EXPECT_LT(number("max_equivalent_over_yield"), 1.0 + 1e-3);
 
-  // The figures of docs/wire-drawing.md come from plot.py: it draws this run too.
-  testing::run_in(
-      directory.path(),
-      "/usr/bin/python3 " + (testing::kWireDrawingExample / "plot.py").string() + " . -o plot.png");
-  EXPECT_GT(fs::file_size(directory / "plot.png"), 10000u);
+  expect_plot_draws(directory.path());
 
   // The wire's answer to small changes of the last loads (wire_response.py): the same loads give
   // the same displacement, and the response is linear in the load to the print precision of
@@ -110,6 +139,37 @@ TEST(WireDrawingCase, CoarseShortRunCouplesFilmAndWire) {
   EXPECT_GT(reaction(2), reaction(1));
 }
 
+// The case as it ships (parameters.yaml: the wire a 1 degree sector driven by displacement
+// under the film, its outer layer fully integrated), on the coarse meshes: 12 steps, the die
+// held for 2 and then closing at the paper's rate. Every step converges to the paper's 0.01 um
+// within the bands below (measured 5.67 on average, at most 9), the film at the die's approach end
+// is where Wilson and Walowit's inlet estimate puts it (measured 1.30 of it), the wire is in axial
+// equilibrium with the loads ccx took (as nodal forces and the drive's reactions), the film's
+// radial load reaches the wire, and the stresses stay below the yield surface (0.90 of it: the
+// coarse wire has not yielded by step 12).
+TEST(WireDrawingCase, TheCaseAsShippedRunsCoarse) {
+  testing::TemporaryDirectory directory;
+  const auto iterations =
+      run_case(directory.path(), kCoarseMeshes + " --set time.held_steps=2", 12);
+  ASSERT_EQ(iterations.size(), 12u);
+  EXPECT_LE(mean(iterations), 8.0);
+  EXPECT_LE(*std::max_element(iterations.begin(), iterations.end()), 12.0);
+
+  const auto checks = checks_of(directory.path());
+  const auto number = [&](const char* key) { return checks.at(key).get<double>(); };
+  EXPECT_GT(number("film_thickness_at_cone_end"), 0.7 * number("wilson_walowit_h0"));
+  EXPECT_LT(number("film_thickness_at_cone_end"), 1.6 * number("wilson_walowit_h0"));
+  // ccx's reaction at the exit end against the back force and the loads it took (measured
+  // 7.9e-5).
+  EXPECT_LT(std::abs(number("force_balance_error")), 1e-3);
+  // The film's pressure reaches the wire as the drive's reactions, balanced to what the
+  // coupling's 0.01 um leaves: the wire's surface stiffness (6e15 Pa/m) times that is 6 MPa
+  // against film pressures of 100-500 MPa (measured 6.9e-3).
+  EXPECT_LT(std::abs(number("transfer_error_radial")), 2e-2);
+  EXPECT_LT(number("max_equivalent_over_yield"), 1.0 + 1e-3);
+  expect_plot_draws(directory.path());
+}
+
 }  // namespace
 }  // namespace cocopp
 
@@ -123,11 +183,11 @@ namespace {
 // without them (all to the paper's 0.01 um).
 TEST(WireDrawingCase, IqnIlsmAndIbqnReachIqnIlssSolution) {
   const std::string coarse =
-      "--set mesh.wire_radial_elements=4 --set mesh.wire_axial_elements=153"
-      " --set mesh.film_axial_cells=50 --set mesh.film_radial_cells=3"
+      kCoarseMeshes +
       " --set surrogate.film_axial_cells=25 --set surrogate.film_radial_cells=2"
       " --set surrogate.wire_radial_elements=2 --set surrogate.wire_axial_elements=77"
-      " --set time.held_steps=2";
+      " --set time.held_steps=2" +
+      testing::kLoadDrivenWire;
   const char* types[] = {"iqnism", "ibqn", "iqni"};
   std::vector<double> solutions[3];
   for (int index = 0; index < 3; ++index) {
@@ -166,33 +226,19 @@ TEST(WireDrawingCase, IqnIlsmAndIbqnReachIqnIlssSolution) {
 // film reports its gap and wall position, the mapped wrapper the coverage and the wall mapped
 // exactly onto the wire's nodes, the wire (a 3D sector) is driven under the film and returns
 // the balancing position. Four steps of the coarse case converge to the paper's 0.01 um, the
-// first in at most 10 iterations, the others in at most 8 (measured 9, 7, 7, 5); and the film's
-// wall is the one the same sector loaded by the film gives, to 0.03 um (measured 0.006, 0.010,
-// 0.005, 0.007 um, of 0.6 - 0.9 um: what the coupling's 0.01 um leaves in either run).
+// first in at most 10 iterations, the others in at most 8 (measured 9, 8, 6, 5); and the film's
+// wall is the one the same sector loaded by the film gives, to 0.03 um (measured 0.014 um of
+// the wall's largest move, 0.95 um: what the coupling's 0.01 um leaves in either run).
 TEST(WireDrawingCase, DisplacementDrivenWireBalancesAsTheLoadedOne) {
-  const std::string coarse_sector =
-      "--set mesh.wire_radial_elements=4 --set mesh.wire_axial_elements=153"
-      " --set mesh.film_axial_cells=50 --set mesh.film_radial_cells=3 --set mesh.wire_model=sector";
-  const auto run_four_steps = [](const fs::path& directory, const std::string& options) {
-    testing::write_wire_drawing_case(directory, options);
-    testing::edit(directory / "case.yaml", "number_of_timesteps: 80", "number_of_timesteps: 4");
-    const testing::CommandResult run =
-        testing::run_cocopp("run -q " + (directory / "case.yaml").string());
-    EXPECT_EQ(run.exit_code, 0) << run.output;
-    const auto summary = testing::read_json(directory / "results/case.summary.json");
-    EXPECT_TRUE(summary["unconverged_steps"].empty()) << summary["unconverged_steps"];
-    return ResultsReader(directory / "results/case.h5");
-  };
   testing::TemporaryDirectory driven_directory, loaded_directory;
-  const ResultsReader driven =
-      run_four_steps(driven_directory.path(),
-                     coarse_sector + " --set coupling.drive=displacement --set coupling.omega=1");
-  const auto iterations = driven.dataset("steps/iterations").values;
+  const auto iterations = run_case(driven_directory.path(), kCoarseMeshes, 4);
   ASSERT_EQ(iterations.size(), 4u);
   EXPECT_LE(iterations[0], 10.0);
   for (std::size_t i = 1; i < iterations.size(); ++i) EXPECT_LE(iterations[i], 8.0) << i + 1;
-
-  const ResultsReader loaded = run_four_steps(loaded_directory.path(), coarse_sector);
+  run_case(loaded_directory.path(),
+           kCoarseMeshes + " --set coupling.drive=load --set coupling.omega=0.01", 4);
+  const ResultsReader driven(driven_directory / "results/case.h5");
+  const ResultsReader loaded(loaded_directory / "results/case.h5");
   const auto wall = driven.dataset("x/wire_points/displacement");
   const auto loaded_wall = loaded.dataset("x/wire_points/displacement");
   ASSERT_EQ(wall.values.size(), loaded_wall.values.size());
@@ -201,6 +247,8 @@ TEST(WireDrawingCase, DisplacementDrivenWireBalancesAsTheLoadedOne) {
     largest = std::max(largest, std::abs(loaded_wall.values[i]));
     difference = std::max(difference, std::abs(wall.values[i] - loaded_wall.values[i]));
   }
+  std::printf("the film's wall, driven against loaded: largest difference %.3g m of %.3g m\n",
+              difference, largest);
   EXPECT_GT(largest, 5e-7);  // the wall has moved
   EXPECT_LT(difference, 3e-8);
 }

@@ -54,15 +54,15 @@ void expect_bar_in_uniform_tension(const std::string& arguments, int axial) {
 }
 
 TEST(WireDrawingStructure, TheWireAloneIsABarInUniformTension) {
-  expect_bar_in_uniform_tension("", 306);
+  expect_bar_in_uniform_tension(testing::kLoadDrivenWire, 306);
 }
 
-// The wire as a 1 degree 3D sector (C3D20R, C3D15 at the axis, cylindrical *TRANSFORM, hoop
-// held; mesh.wire_model: sector, what coupling.drive: displacement needs), on the coarse grid:
-// the same bar, its x-y side returned.
+// The wire as a 1 degree 3D sector (the case's default, mesh.wire_model: sector, what
+// coupling.drive: displacement needs: C3D20R, its outer layer C3D20, C3D15 at the axis,
+// cylindrical *TRANSFORM, hoop held), on the coarse grid: the same bar, its x-y side returned.
 TEST(WireDrawingStructure, TheSectorWireIsTheSameBar) {
   expect_bar_in_uniform_tension(
-      "--set mesh.wire_model=sector --set mesh.wire_radial_elements=4 "
+      "--set mesh.wire_radial_elements=4 "
       "--set mesh.wire_axial_elements=153",
       153);
 }

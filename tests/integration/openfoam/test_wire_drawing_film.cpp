@@ -20,7 +20,7 @@ namespace {
 
 using testing::TemporaryDirectory;
 
-// examples/wire_drawing/parameters.yaml
+// examples/wire_drawing/parameters.yaml, the die with a sharp corner (die.transition_length 0)
 constexpr double kRadius = 0.75e-3, kEntry = 1.0e-3, kBearing = 0.5e-3, kGap = 10e-6;
 constexpr double kViscosity = 245.0, kSpeed = 1.0, kDeltaT = 1e-4;
 const double kSlope = std::tan(6.0 * M_PI / 180.0);
@@ -105,7 +105,8 @@ struct Differences {
 /// (make_case.py `arguments`), against lubrication theory.
 Differences film_against_theory(const std::string& arguments) {
   TemporaryDirectory directory;
-  testing::write_wire_drawing_case(directory.path(), "--set die.reduction=0 " + arguments);
+  testing::write_wire_drawing_case(
+      directory.path(), "--set die.reduction=0 --set die.transition_length=0 " + arguments);
   auto film = testing::initialized_wrapper(
       "type: openfoam\nname: film\nworking_directory: fluid\nboundary_names: [wire]\n"
       "timeout: 120\n",
@@ -172,8 +173,9 @@ TEST(WireDrawingFilm, RefinedFilmComesCloserToLubricationTheory) {
 // initial ones).
 TEST(WireDrawingFilm, ReportsItsGapAndWallDisplacement) {
   TemporaryDirectory directory;
-  testing::write_wire_drawing_case(directory.path(),
-                                   "--set die.reduction=0 --set mesh.film_axial_cells=50");
+  testing::write_wire_drawing_case(
+      directory.path(),
+      "--set die.reduction=0 --set die.transition_length=0 --set mesh.film_axial_cells=50");
   auto film = testing::initialized_wrapper(
       "type: openfoam\nname: film\nworking_directory: fluid\nboundary_names: [wire]\n"
       "gap_patch: die\ntimeout: 120\n",
