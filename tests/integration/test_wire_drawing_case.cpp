@@ -35,6 +35,10 @@ const std::string kCoarseMeshes =
     "--set mesh.wire_radial_elements=4 --set mesh.wire_axial_elements=153"
     " --set mesh.film_axial_cells=50 --set mesh.film_radial_cells=3";
 
+double mean(const std::vector<double>& values) {
+  return std::accumulate(values.begin(), values.end(), 0.0) / values.size();
+}
+
 /// The case of make_case.py `arguments` run for `steps` steps in `directory`, every step
 /// converged; its iterations per step (printed: all, their mean and largest).
 std::vector<double> run_case(const fs::path& directory, const std::string& arguments, int steps) {
@@ -51,14 +55,9 @@ std::vector<double> run_case(const fs::path& directory, const std::string& argum
   const auto iterations = results.dataset("steps/iterations").values;
   if (iterations.empty()) return iterations;
   for (double n : iterations) std::printf("%.0f ", n);
-  std::printf("iterations per step: %.2f on average, at most %.0f\n",
-              std::accumulate(iterations.begin(), iterations.end(), 0.0) / iterations.size(),
+  std::printf("iterations per step: %.2f on average, at most %.0f\n", mean(iterations),
               *std::max_element(iterations.begin(), iterations.end()));
   return iterations;
-}
-
-double mean(const std::vector<double>& values) {
-  return std::accumulate(values.begin(), values.end(), 0.0) / values.size();
 }
 
 /// The expert's checks (examples/wire_drawing/checks.py) of the run in `directory` at its last

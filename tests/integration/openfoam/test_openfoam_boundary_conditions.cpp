@@ -8,11 +8,10 @@
 #include <cmath>
 #include <fstream>
 
-#include "core/case/settings.hpp"
 #include "solver_wrappers/solver_error.hpp"
 #include "solver_wrappers/solver_wrapper.hpp"
 #include "tests/integration/openfoam/openfoam_files.hpp"
-#include "tests/support/temporary_directory.hpp"
+#include "tests/support/solver_wrapper_case.hpp"
 
 namespace cocopp {
 namespace {
@@ -43,16 +42,10 @@ class FilmBoundaryConditions : public ::testing::Test {
 
   /// The film's solver started (again, after finalize()) at step `timestep_start`.
   void start(int timestep_start = 0) {
-    RunSettings run;
-    run.delta_t = kDeltaT;
-    run.case_directory = directory_.path();
-    run.timestep_start = timestep_start;
-    const Settings settings = Settings::load_string(
+    wrapper_ = testing::initialized_wrapper(
         "type: openfoam\nname: film\nworking_directory: film\nboundary_names: [wire]\n"
         "timeout: 60\n",
-        "case.yaml");
-    wrapper_ = SolverWrapperRegistry::instance().create(settings, run);
-    wrapper_->initialize();
+        directory_.path(), kDeltaT, timestep_start);
   }
 
   /// One time step with every wire point moved radially outwards by `growth` from its start.
