@@ -10,10 +10,7 @@ cocopp=$(cocopp_executable "$root")
 case_dir="$here/results/bench_case"
 rm -rf "$case_dir" "$here/results/bench"
 /usr/bin/python3 "$here/make_case.py" --output "$case_dir" "$@"
-export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
 for film in "$case_dir/fluid" "$case_dir/surrogate/fluid"; do  # the surrogate's: iqnism
-  [ -d "$film" ] || continue
-  (cd "$film" && blockMesh > log.blockMesh 2>&1) ||
-    { echo "bench.sh: blockMesh failed, see $film/log.blockMesh" >&2; exit 1; }
+  if [ -d "$film" ]; then "$film/Allmesh"; fi
 done
 exec "$cocopp" bench "$here/bench.yaml"

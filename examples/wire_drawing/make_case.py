@@ -22,7 +22,7 @@ import sys
 import yaml
 
 HERE = pathlib.Path(__file__).resolve().parent
-TEXT_PARAMETERS = {"wire_element", "wire_model", "model", "type", "drive"}  # others: numbers
+TEXT_PARAMETERS = {"wire_element", "wire_model", "model", "type", "drive", "film_motion"}  # others: numbers
 
 
 def load_parameters(path, changes):
@@ -149,6 +149,50 @@ def die_schedule(p):
     return [(0.0, 0.0)] + held_points + [(end, -closing)]
 
 
+# The film's zones for its layered motion: the cells, and the wire and die walls as face zones.
+TOPO_SET_DICT = header("dictionary", "topoSetDict") + """\
+actions
+(
+    { name filmCells; type cellSet; action new; source boxToCell; box (-1 -1 -1) (1 1 1); }
+    { name film; type cellZoneSet; action new; source setToCellZone; set filmCells; }
+    { name wireFaces; type faceSet; action new; source patchToFace; patch wire; }
+    { name wireZone; type faceZoneSet; action new; source setToFaceZone; faceSet wireFaces; }
+    { name dieFaces; type faceSet; action new; source patchToFace; patch die; }
+    { name dieZone; type faceZoneSet; action new; source setToFaceZone; faceSet dieFaces; }
+);
+"""
+
+# The film's mesh, made in its own directory as an OpenFOAM case is: ./Allmesh.
+ALLMESH = """\
+#!/bin/sh
+# Meshes the film (make_case.py): blockMesh, then the zones of its layered motion (topoSet).
+cd "$(dirname "$0")" || exit 1
+export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}"
+blockMesh > log.blockMesh 2>&1 || { echo "Allmesh: blockMesh failed, see $PWD/log.blockMesh" >&2; exit 1; }
+topoSet > log.topoSet 2>&1 || { echo "Allmesh: topoSet failed, see $PWD/log.topoSet" >&2; exit 1; }
+"""
+
+
+def dynamic_mesh_dict(motion):
+    """The film's mesh motion. layered: each point keeps its fraction of the gap between wire
+    and die, walked along its column of edges in the initial mesh (the film is thin and moves
+    only radially); laplacian: displacementLaplacian, whose layers grow uneven at the outlet
+    once the die has closed (docs/wire-drawing.md)."""
+    text = (header("dictionary", "dynamicMeshDict") + "dynamicFvMesh   dynamicMotionSolverFvMesh;\n"
+            "motionSolverLibs (\"libfvMotionSolvers.so\");\n")
+    if motion == "laplacian":
+        return (text + "solver          displacementLaplacian;\n"
+                "displacementLaplacianCoeffs\n{\n    diffusivity     uniform;\n}\n")
+    if motion != "layered":
+        sys.exit(f"make_case.py: mesh.film_motion: '{motion}' is not layered or laplacian")
+    return (text + "// Each film point keeps its fraction of the wire-die gap (system/topoSetDict makes\n"
+            "// the zones).\nsolver          displacementLayeredMotion;\n"
+            "displacementLayeredMotionCoeffs\n{\n    regions\n    {\n        film\n        {\n"
+            "            interpolationScheme linear;\n            boundaryField\n            {\n"
+            "                wireZone { type follow; }\n                dieZone  { type follow; }\n"
+            "            }\n        }\n    }\n}\n")
+
+
 def fluid_files(p, film):
     lubricant, time = p["lubricant"], p["time"]
     speed = p["wire"]["drawing_speed"]
@@ -182,11 +226,9 @@ def fluid_files(p, film):
         f"        radialDisplacement table ({table});\n"
         "        value              uniform (0 0 0);\n    }\n"
         "    inlet        { type slip; }\n    outlet       { type slip; }\n" + walls + "}\n",
-        "constant/dynamicMeshDict": header("dictionary", "dynamicMeshDict") +
-        "dynamicFvMesh   dynamicMotionSolverFvMesh;\nmotionSolverLibs (\"libfvMotionSolvers.so\");\n"
-        "solver          displacementLaplacian;\n"
-        "// The film is thin: the radial motion of wire and die spreads linearly across it.\n"
-        "displacementLaplacianCoeffs\n{\n    diffusivity     uniform;\n}\n",
+        "constant/dynamicMeshDict": dynamic_mesh_dict(p["mesh"]["film_motion"]),
+        "system/topoSetDict": TOPO_SET_DICT,
+        "Allmesh": ALLMESH,
         "constant/transportProperties": header("dictionary", "transportProperties") +
         "transportModel  Newtonian;\n"
         f"nu              {lubricant['viscosity'] / lubricant['density']:.17g};\n"
@@ -600,6 +642,7 @@ def write_solvers(p, refine, output):
         path = output / "fluid" / name
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(text)
+    (output / "fluid" / "Allmesh").chmod(0o755)
     (output / "structure").mkdir(parents=True, exist_ok=True)
     model = p["mesh"]["wire_model"]
     if model not in ("axisymmetric", "sector"):

@@ -27,12 +27,8 @@ done
 case_dir="$here/results/$name"
 rm -rf "$case_dir"
 /usr/bin/python3 "$here/make_case.py" --output "$case_dir" "${args[@]}"
-# OpenFOAM's utilities need WM_PROJECT_DIR (Debian's package installs it here).
-export WM_PROJECT_DIR=${WM_PROJECT_DIR:-/usr/share/openfoam}
 for film in "$case_dir/fluid" "$case_dir/surrogate/fluid"; do  # the surrogate's: iqnism
-  [ -d "$film" ] || continue
-  (cd "$film" && blockMesh > log.blockMesh 2>&1) ||
-    { echo "run.sh: blockMesh failed, see $film/log.blockMesh" >&2; exit 1; }
+  if [ -d "$film" ]; then "$film/Allmesh"; fi
 done
 if [ -n "$steps" ]; then
   sed -i "s/^  number_of_timesteps: .*/  number_of_timesteps: $steps/" "$case_dir/case.yaml"

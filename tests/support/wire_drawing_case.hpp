@@ -1,8 +1,8 @@
 #pragma once
 // The wire drawing example's case written for a test: examples/wire_drawing/make_case.py into
 // `directory` with more of its arguments (e.g. "--set die.reduction=0"), and the film meshed
-// (blockMesh, which needs OpenFOAM) unless `mesh_film` is false, and the surrogate's film too
-// where the case has one (coupling.type iqnism).
+// (its Allmesh: blockMesh and topoSet, which need OpenFOAM) unless `mesh_film` is false, and the
+// surrogate's film too where the case has one (coupling.type iqnism).
 #include <filesystem>
 #include <string>
 
@@ -26,9 +26,9 @@ inline void write_wire_drawing_case(const std::filesystem::path& directory,
   run_in(directory, "/usr/bin/python3 " + (kWireDrawingExample / "make_case.py").string() +
                         " --output . " + arguments);
   if (!mesh_film) return;
-  run_in(directory / "fluid", "blockMesh");
+  run_in(directory / "fluid", "./Allmesh");
   if (std::filesystem::exists(directory / "surrogate" / "fluid"))
-    run_in(directory / "surrogate" / "fluid", "blockMesh");
+    run_in(directory / "surrogate" / "fluid", "./Allmesh");
 }
 
 }  // namespace cocopp::testing

@@ -8,10 +8,12 @@
 
 #include <array>
 #include <cmath>
+#include <map>
 #include <utility>
 #include <vector>
 
 #include "solver_wrappers/solver_wrapper.hpp"
+#include "tests/integration/openfoam/openfoam_files.hpp"
 #include "tests/support/solver_wrapper_case.hpp"
 #include "tests/support/wire_drawing_case.hpp"
 
@@ -202,6 +204,74 @@ TEST(WireDrawingFilm, ReportsItsGapAndWallDisplacement) {
     const double z = faces.coordinates(f, 2);
     EXPECT_NEAR(gaps(f, 0), gap(z) - kMove, 8e-3 * gap(z)) << "z " << z;
   }
+}
+
+// The film's mesh motion (mesh.film_motion: layered): every point keeps its fraction of the gap
+// between wire and die, and moves only radially. One step with the die closing (0.48 um) and
+// the wire's wall moved out unevenly along the film (0.5 to 1.5 um): in every column of points
+// (one axial position, one side of the wedge) each point's radius is the wire's plus its initial
+// fraction of the new gap, to 1e-9 of the gap (measured 9.5e-11: the points are written with 12
+// digits, 1e-15 m of a 10 um gap), and no point moves axially (to 1e-15 m).
+// displacementLaplacian, the motion before, spread the die's closing unevenly over the layers at
+// the outlet (0.93 to 0.19 um across a 2.8 um gap at step 47) and inverted a cell in step 48.
+TEST(WireDrawingFilm, LayeredMotionKeepsEachPointAtItsFractionOfTheGap) {
+  TemporaryDirectory directory;
+  testing::write_wire_drawing_case(directory.path(),
+                                   "--set time.held_steps=0 --set die.transition_length=0 "
+                                   "--set mesh.film_axial_cells=50");
+  auto film = testing::initialized_wrapper(
+      "type: openfoam\nname: film\nworking_directory: fluid\nboundary_names: [wire]\n"
+      "timeout: 120\n",
+      directory.path(), kDeltaT);
+  constexpr double kMove = 1e-6;
+  Interface moved = film->input_interface();
+  const auto& points = *moved.parts()[0].model_part;
+  auto displacement = moved.values(points.name, "displacement");
+  for (Eigen::Index i = 0; i < points.coordinates.rows(); ++i) {
+    const double uneven = 0.5 + points.coordinates(i, 2) / (kEntry + kBearing);
+    displacement.row(i) =
+        uneven * kMove *
+        Eigen::RowVector3d(points.coordinates(i, 0), points.coordinates(i, 1), 0.0).normalized();
+  }
+  film->initialize_step(1, kDeltaT);
+  film->solve(moved);
+  film->finalize_step();
+  film->finalize();
+
+  const auto initial = testing::read_list_file(directory.path() / "fluid/constant/polyMesh/points");
+  const auto now = testing::read_list_file(directory.path() / "fluid/0.0001/polyMesh/points");
+  ASSERT_EQ(initial.size(), now.size());
+  auto radius = [](const std::vector<double>& p, std::size_t i) {
+    return std::hypot(p[3 * i], p[3 * i + 1]);
+  };
+  // Columns by (axial position in nm, side of the wedge).
+  std::map<std::pair<long, bool>, std::vector<std::size_t>> columns;
+  for (std::size_t i = 0; i < initial.size() / 3; ++i) {
+    EXPECT_NEAR(now[3 * i + 2], initial[3 * i + 2], 1e-15) << "point " << i;
+    columns[{std::lround(initial[3 * i + 2] * 1e9), initial[3 * i] > 0}].push_back(i);
+  }
+  ASSERT_EQ(columns.size(), 2u * 51u);
+  double worst = 0.0, die_closed = 0.0;
+  for (const auto& [where, column] : columns) {
+    ASSERT_EQ(column.size(), 6u);  // 5 cell layers
+    auto extreme = [&](const std::vector<double>& p, bool outer) {
+      double r = radius(p, column[0]);
+      for (std::size_t i : column)
+        r = outer ? std::max(r, radius(p, i)) : std::min(r, radius(p, i));
+      return r;
+    };
+    const double wire0 = extreme(initial, false), die0 = extreme(initial, true);
+    const double wire = extreme(now, false), die = extreme(now, true);
+    die_closed = std::max(die_closed, die0 - die);
+    for (std::size_t i : column) {
+      const double fraction = (radius(initial, i) - wire0) / (die0 - wire0);
+      worst = std::max(worst,
+                       std::abs(radius(now, i) - (wire + fraction * (die - wire))) / (die - wire));
+    }
+  }
+  EXPECT_GT(die_closed, 0.4e-6);  // the die did close
+  EXPECT_LT(worst, 1e-9);
+  std::printf("layered motion: worst point off its gap fraction by %.3g of the gap\n", worst);
 }
 
 }  // namespace
