@@ -80,7 +80,9 @@ def run_checks(case, p, refine, step=None):
     # the film's wall points, which only approximates the wire's wavy surface under the die).
     film_axial = forces["shear_axial"] + forces["pressure_axial"]
     results["force_balance_error_film"] = (pull - (wire["back_force"] - film_axial)) / pull
-    summary = json.loads((case / "results" / "case.summary.json").read_text())
+    # A run still going (or killed) has no summary yet: its steps so far are checked all the same.
+    summary_file = case / "results" / "case.summary.json"
+    summary = json.loads(summary_file.read_text()) if summary_file.exists() else {}
     axisymmetric = p["mesh"].get("wire_model", "axisymmetric") == "axisymmetric"
     last_of_run = (results["step"] == results["steps"]
                    and summary.get("status") in ("completed", "stalled"))

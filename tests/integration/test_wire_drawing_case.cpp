@@ -78,6 +78,22 @@ void expect_plot_draws(const fs::path& directory) {
   EXPECT_GT(fs::file_size(directory / "plot.png"), 10000u);
 }
 
+/// Where the run's time went (examples/wire_drawing/timing.py, docs/wire-drawing.md's
+/// performance tables): its totals count the run's own iterations.
+void expect_timing_reads(const fs::path& directory, const std::vector<double>& iterations) {
+  testing::run_in(directory, "sh -c '/usr/bin/python3 " +
+                                 (testing::kWireDrawingExample / "timing.py").string() +
+                                 " . --phases 2 > timing.txt'");
+  const std::string timing = testing::read_text(directory / "timing.txt");
+  std::printf("%s\n", timing.c_str());
+  const long total = std::lround(std::accumulate(iterations.begin(), iterations.end(), 0.0));
+  EXPECT_NE(timing.find(std::to_string(iterations.size()) + " steps, " + std::to_string(total) +
+                        " coupling iterations"),
+            std::string::npos);
+  EXPECT_NE(timing.find("| 1–2 |"), std::string::npos);  // the held steps, then the rest
+  EXPECT_NE(timing.find("| 3–" + std::to_string(iterations.size()) + " |"), std::string::npos);
+}
+
 TEST(WireDrawingCase, CoarseShortRunCouplesFilmAndWire) {
   testing::TemporaryDirectory directory;
   const auto iterations = run_case(
@@ -167,6 +183,7 @@ TEST(WireDrawingCase, TheCaseAsShippedRunsCoarse) {
   EXPECT_LT(std::abs(number("transfer_error_radial")), 2e-2);
   EXPECT_LT(number("max_equivalent_over_yield"), 1.0 + 1e-3);
   expect_plot_draws(directory.path());
+  expect_timing_reads(directory.path(), iterations);
 }
 
 }  // namespace
