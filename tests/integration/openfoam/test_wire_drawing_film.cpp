@@ -8,7 +8,9 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
 #include <map>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -103,16 +105,25 @@ struct Differences {
   double shear = 0.0;     ///< the same for the wire's shear, away from the cone's end
 };
 
+/// The example's film (make_case.py with `arguments`) written into `directory`, and its wrapper
+/// started there (`extra_keys`: more of the wrapper's keys, each line ending in a newline).
+std::unique_ptr<SolverWrapper> film_in(const TemporaryDirectory& directory,
+                                       const std::string& arguments,
+                                       const std::string& extra_keys = "") {
+  testing::write_wire_drawing_case(directory.path(), arguments);
+  return testing::initialized_wrapper(
+      "type: openfoam\nname: film\nworking_directory: fluid\nboundary_names: [wire]\n"
+      "timeout: 120\n" +
+          extra_keys,
+      directory.path(), kDeltaT);
+}
+
 /// One time step of the example's film with the die held and the wire not moving radially
 /// (make_case.py `arguments`), against lubrication theory.
 Differences film_against_theory(const std::string& arguments) {
   TemporaryDirectory directory;
-  testing::write_wire_drawing_case(
-      directory.path(), "--set die.reduction=0 --set die.transition_length=0 " + arguments);
-  auto film = testing::initialized_wrapper(
-      "type: openfoam\nname: film\nworking_directory: fluid\nboundary_names: [wire]\n"
-      "timeout: 120\n",
-      directory.path(), kDeltaT);
+  auto film =
+      film_in(directory, "--set die.reduction=0 --set die.transition_length=0 " + arguments);
   Interface still = film->input_interface();
   still.set_data(Eigen::VectorXd::Zero(still.size()));
   // The film's viscous time h^2 / nu is below 1e-7 s: one step of 1e-4 s from rest is steady.
@@ -165,6 +176,30 @@ TEST(WireDrawingFilm, RefinedFilmComesCloserToLubricationTheory) {
   EXPECT_LT(refined.shear, 0.02);
 }
 
+/// The film's input with each of its wall points moved radially (in its wedge plane) by
+/// `move(z)` m.
+Interface radially_moved_wall(const SolverWrapper& film,
+                              const std::function<double(double)>& move) {
+  Interface moved = film.input_interface();
+  const auto& points = *moved.parts()[0].model_part;
+  auto displacement = moved.values(points.name, "displacement");
+  for (Eigen::Index i = 0; i < points.coordinates.rows(); ++i)
+    displacement.row(i) =
+        move(points.coordinates(i, 2)) *
+        Eigen::RowVector3d(points.coordinates(i, 0), points.coordinates(i, 1), 0.0).normalized();
+  return moved;
+}
+
+/// One time step of the film with `input`, and the film finished (its time directory written);
+/// what it returned.
+Interface solve_one_step(SolverWrapper& film, const Interface& input) {
+  film.initialize_step(1, kDeltaT);
+  Interface output = film.solve(input);
+  film.finalize_step();
+  film.finalize();
+  return output;
+}
+
 // With gap_patch: the film also reports, per wall face, its gap to the die (the distance from
 // the face centre to the die's faces), and per wall point where the wall stands (its
 // displacement): what a wire driven by displacement under the film takes. The wall moved out
@@ -175,28 +210,19 @@ TEST(WireDrawingFilm, RefinedFilmComesCloserToLubricationTheory) {
 // initial ones).
 TEST(WireDrawingFilm, ReportsItsGapAndWallDisplacement) {
   TemporaryDirectory directory;
-  testing::write_wire_drawing_case(
-      directory.path(),
-      "--set die.reduction=0 --set die.transition_length=0 --set mesh.film_axial_cells=50");
-  auto film = testing::initialized_wrapper(
-      "type: openfoam\nname: film\nworking_directory: fluid\nboundary_names: [wire]\n"
-      "gap_patch: die\ntimeout: 120\n",
-      directory.path(), kDeltaT);
+  auto film =
+      film_in(directory,
+              "--set die.reduction=0 --set die.transition_length=0 --set mesh.film_axial_cells=50",
+              "gap_patch: die\n");
   constexpr double kMove = 1e-6;
-  Interface moved = film->input_interface();
+  const Interface moved = radially_moved_wall(*film, [](double) { return kMove; });
+  const Interface output = solve_one_step(*film, moved);
   const auto& points = *moved.parts()[0].model_part;
-  auto displacement = moved.values(points.name, "displacement");
-  for (Eigen::Index i = 0; i < points.coordinates.rows(); ++i)
-    displacement.row(i) =
-        kMove *
-        Eigen::RowVector3d(points.coordinates(i, 0), points.coordinates(i, 1), 0.0).normalized();
-  film->initialize_step(1, kDeltaT);
-  const Interface output = film->solve(moved);
-  film->finalize_step();
-  film->finalize();
   ASSERT_EQ(output.parts().size(), 2u);
   const Eigen::MatrixXd wall = output.values(points.name, "wall_displacement");
-  EXPECT_LT((wall - Eigen::MatrixXd(displacement)).cwiseAbs().maxCoeff(), 1e-6 * kMove);
+  EXPECT_LT(
+      (wall - Eigen::MatrixXd(moved.values(points.name, "displacement"))).cwiseAbs().maxCoeff(),
+      1e-6 * kMove);
   const auto& faces = *output.parts()[1].model_part;
   const Eigen::MatrixXd gaps = output.values(faces.name, "gap");
   ASSERT_EQ(gaps.rows(), 50);
@@ -216,27 +242,13 @@ TEST(WireDrawingFilm, ReportsItsGapAndWallDisplacement) {
 // the outlet (0.93 to 0.19 um across a 2.8 um gap at step 47) and inverted a cell in step 48.
 TEST(WireDrawingFilm, LayeredMotionKeepsEachPointAtItsFractionOfTheGap) {
   TemporaryDirectory directory;
-  testing::write_wire_drawing_case(directory.path(),
-                                   "--set time.held_steps=0 --set die.transition_length=0 "
-                                   "--set mesh.film_axial_cells=50");
-  auto film = testing::initialized_wrapper(
-      "type: openfoam\nname: film\nworking_directory: fluid\nboundary_names: [wire]\n"
-      "timeout: 120\n",
-      directory.path(), kDeltaT);
+  auto film = film_in(directory,
+                      "--set time.held_steps=0 --set die.transition_length=0 "
+                      "--set mesh.film_axial_cells=50");
   constexpr double kMove = 1e-6;
-  Interface moved = film->input_interface();
-  const auto& points = *moved.parts()[0].model_part;
-  auto displacement = moved.values(points.name, "displacement");
-  for (Eigen::Index i = 0; i < points.coordinates.rows(); ++i) {
-    const double uneven = 0.5 + points.coordinates(i, 2) / (kEntry + kBearing);
-    displacement.row(i) =
-        uneven * kMove *
-        Eigen::RowVector3d(points.coordinates(i, 0), points.coordinates(i, 1), 0.0).normalized();
-  }
-  film->initialize_step(1, kDeltaT);
-  film->solve(moved);
-  film->finalize_step();
-  film->finalize();
+  solve_one_step(*film, radially_moved_wall(*film, [](double z) {
+    return (0.5 + z / (kEntry + kBearing)) * kMove;  // uneven along the film
+  }));
 
   const auto initial = testing::read_list_file(directory.path() / "fluid/constant/polyMesh/points");
   const auto now = testing::read_list_file(directory.path() / "fluid/0.0001/polyMesh/points");
