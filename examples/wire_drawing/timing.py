@@ -52,7 +52,7 @@ def rows(results, ends):
     for i, name in enumerate(names):
         table.append(f"- {name}: {solvers[:, i].sum():.0f} s ({100 * solvers[:, i].sum() / total:.1f} %)")
     table.append(f"- coupler: {coupler.sum():.2f} s ({1e6 * coupler.sum() / iterations.sum():.0f} µs "
-                 "per coupling iteration, mapping included)")
+                 "per coupling iteration; a mapped wrapper's mapping counts in its solver's time)")
     return table
 
 
