@@ -5,7 +5,7 @@
 #
 #   scripts/make_doc_figures.sh --list             # the figures, what each needs and how long
 #   scripts/make_doc_figures.sh stability          # one or more figures by name
-#   scripts/make_doc_figures.sh all                # every figure (about an hour)
+#   scripts/make_doc_figures.sh all                # every figure (about 3 hours)
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 source "$root/scripts/lib/cocopp-bin.sh"
@@ -23,7 +23,7 @@ figures=(
   "tube_flow_calculix|CalculiX|2 min|docs/solver-wrappers-calculix.md"
   "openfoam_wedge|OpenFOAM|1 min|docs/solver-wrappers-openfoam.md"
   "wire_drawing_bench|OpenFOAM and CalculiX|8 min|docs/wire-drawing.md"
-  "wire_drawing|OpenFOAM and CalculiX|30 min|docs/wire-drawing.md"
+  "wire_drawing|OpenFOAM and CalculiX|2.5 hours|docs/wire-drawing.md"
 )
 
 publish() {  # publish <file under results/> <name in docs/images>
