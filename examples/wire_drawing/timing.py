@@ -1,13 +1,13 @@
 #!/usr/bin/python3
 """Where a wire drawing run's time went, phase by phase (docs/wire-drawing.md, "Performance").
 
-    timing.py [CASE_DIR] [--phases 10 20 40 60]
+    timing.py [CASE_DIR] [--phases 10 30 50 70]
 
 Reads CASE_DIR/results/case.h5 (default results/case) and prints a Markdown table: for each
-phase of time steps (by default the held steps, then the closing steps in groups of 20; or the
-last step of each phase but the last with --phases) its coupling iterations per step, its wall
-time, and each solver's and the coupler's time per coupling iteration; then the whole run's
-totals with each part's share of the wall time.
+phase of time steps its coupling iterations per step, its wall time, and each solver's and the
+coupler's time per coupling iteration; then the whole run's totals with each part's share of
+the wall time. --phases gives the last step of each phase but the last (default 10 30 50 70:
+the paper's 10 held steps, then its closing steps in groups of 20).
 """
 import argparse
 import os
@@ -15,6 +15,7 @@ import pathlib
 
 os.environ.setdefault("HDF5_USE_FILE_LOCKING", "FALSE")  # a run still writing may be timed
 import h5py  # noqa: E402
+
 HERE = pathlib.Path(__file__).resolve().parent
 
 

@@ -118,6 +118,16 @@ std::unique_ptr<SolverWrapper> film_in(const TemporaryDirectory& directory,
       directory.path(), kDeltaT);
 }
 
+/// One time step of the film with `input`, and the film finished (its time directory written);
+/// what it returned.
+Interface solve_one_step(SolverWrapper& film, const Interface& input) {
+  film.initialize_step(1, kDeltaT);
+  Interface output = film.solve(input);
+  film.finalize_step();
+  film.finalize();
+  return output;
+}
+
 /// One time step of the example's film with the die held and the wire not moving radially
 /// (make_case.py `arguments`), against lubrication theory.
 Differences film_against_theory(const std::string& arguments) {
@@ -127,10 +137,7 @@ Differences film_against_theory(const std::string& arguments) {
   Interface still = film->input_interface();
   still.set_data(Eigen::VectorXd::Zero(still.size()));
   // The film's viscous time h^2 / nu is below 1e-7 s: one step of 1e-4 s from rest is steady.
-  film->initialize_step(1, kDeltaT);
-  const Interface loads = film->solve(still);
-  film->finalize_step();
-  film->finalize();
+  const Interface loads = solve_one_step(*film, still);
 
   const Lubrication theory;
   const auto& centres = loads.parts()[0].model_part->coordinates;
@@ -188,16 +195,6 @@ Interface radially_moved_wall(const SolverWrapper& film,
         move(points.coordinates(i, 2)) *
         Eigen::RowVector3d(points.coordinates(i, 0), points.coordinates(i, 1), 0.0).normalized();
   return moved;
-}
-
-/// One time step of the film with `input`, and the film finished (its time directory written);
-/// what it returned.
-Interface solve_one_step(SolverWrapper& film, const Interface& input) {
-  film.initialize_step(1, kDeltaT);
-  Interface output = film.solve(input);
-  film.finalize_step();
-  film.finalize();
-  return output;
 }
 
 // With gap_patch: the film also reports, per wall face, its gap to the die (the distance from
