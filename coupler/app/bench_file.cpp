@@ -64,13 +64,16 @@ BenchCase read_case(const Settings& s, std::set<std::string>& names) {
   return c;
 }
 
-/// `reference: none`, `reference: {results: file}` or `reference: {tolerance: t}` (default).
+/// `reference: none`, `reference: {results: file}`, `reference: {convergence_criterion: c}` or
+/// `reference: {tolerance: t}` (default).
 void read_reference(const Settings& root, BenchFile& b) {
   const YAML::Node node = root.node()["reference"];
   if (node && node.IsScalar()) {
     root.allow("reference");
     if (node.as<std::string>() != "none")
-      root.fail("reference", "must be 'none' or a mapping with 'results' or 'tolerance'");
+      root.fail("reference",
+                "must be 'none' or a mapping with 'results', 'tolerance' or "
+                "'convergence_criterion'");
     b.reference = ReferenceKind::kNone;
     return;
   }
@@ -82,6 +85,13 @@ void read_reference(const Settings& root, BenchFile& b) {
       reference.fail("results", "no such file: " + b.reference_results.string());
     if (reference.has("tolerance"))
       reference.fail("tolerance", "give either 'results' or 'tolerance', not both");
+  } else if (reference.has("convergence_criterion")) {
+    // Where solver noise sets a floor, a relative tolerance on the step's first residual is
+    // either unreachable or loose: the user then states the reference's criterion outright.
+    if (reference.has("tolerance"))
+      reference.fail("tolerance", "give either 'convergence_criterion' or 'tolerance', not both");
+    reference.allow("convergence_criterion");
+    b.reference_criterion = YAML::Clone(reference.node()["convergence_criterion"]);
   } else {
     b.reference_tolerance = reference.get_in_range("tolerance", 1e-10, Range::positive());
   }

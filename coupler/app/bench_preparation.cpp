@@ -12,12 +12,17 @@ namespace cocopp {
 
 namespace {
 
-/// The base case's coupled solver with a tight tolerance: a converged solution to compare with.
-YAML::Node reference_coupled_solver(const YAML::Node& base, double tolerance) {
-  YAML::Node criterion =
-      YAML::Load(fmt::format("{{type: or, criteria: [{{type: relative_norm, tolerance: {:.17g}}}, "
-                             "{{type: iteration_limit, maximum: 100}}]}}",
-                             tolerance));
+/// The base case's coupled solver with a tight criterion: a converged solution to compare with.
+/// The bench file's own criterion where it gives one, else the relative tolerance; an iteration
+/// limit of 100 either way, so that a reference that cannot get there still ends.
+YAML::Node reference_coupled_solver(const YAML::Node& base, const BenchFile& bench) {
+  YAML::Node tight = bench.reference_criterion;
+  if (!tight)
+    tight = YAML::Load(
+        fmt::format("{{type: relative_norm, tolerance: {:.17g}}}", bench.reference_tolerance));
+  YAML::Node criterion = YAML::Load("{type: or}");
+  criterion["criteria"].push_back(YAML::Clone(tight));
+  criterion["criteria"].push_back(YAML::Load("{type: iteration_limit, maximum: 100}"));
   YAML::Node out = YAML::Clone(base);
   out["convergence_criterion"] = criterion;
   return out;
@@ -126,9 +131,9 @@ std::vector<PlannedRun> prepare_runs(const BenchFile& bench) {
   std::vector<PlannedRun> runs;
   for (const BenchCase& c : bench.cases) {
     if (bench.reference == ReferenceKind::kComputed)
-      runs.push_back(prepare_run(
-          bench, base, c, kReferenceName,
-          reference_coupled_solver(base["coupled_solver"], bench.reference_tolerance), Changes{}));
+      runs.push_back(prepare_run(bench, base, c, kReferenceName,
+                                 reference_coupled_solver(base["coupled_solver"], bench),
+                                 Changes{}));
     for (const Variant& v : bench.variants)
       runs.push_back(prepare_run(bench, base, c, v.name,
                                  merge_coupled_solver(base["coupled_solver"], v.coupled_solver),

@@ -112,6 +112,42 @@ TEST(CocoppBench, ComparesVariantsWithComputedReference) {
   fs::remove_all(dir);
 }
 
+/// A reference with its own criterion (an absolute floor where solver noise makes a relative
+/// one unreachable): the variant with the same criterion reproduces it exactly.
+TEST(CocoppBench, ReferenceTakesTheBenchFilesConvergenceCriterion) {
+  const fs::path dir = bench_directory("bench_criterion", R"(base_case: flow_structure/case.yaml
+reference:
+  convergence_criterion: {type: absolute_norm, tolerance: 1.0e-9}
+settings: {number_of_timesteps: 3}
+variants:
+  - name: same_as_reference
+    coupled_solver:
+      convergence_criterion:
+        type: or
+        criteria: [{type: absolute_norm, tolerance: 1.0e-9}, {type: iteration_limit, maximum: 100}]
+  - name: default_criterion
+)");
+  auto result = run_cocopp("bench --no-plot " + (dir / "bench.yaml").string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const nlohmann::json bench = read_json(dir / "results" / "bench" / "bench.json");
+  EXPECT_EQ(run_named(bench, "same_as_reference")["displacement_error"].get<double>(), 0.0);
+  EXPECT_GT(run_named(bench, "default_criterion")["displacement_error"].get<double>(), 0.0);
+  EXPECT_EQ(run_named(bench, "reference")["average_iterations"],
+            run_named(bench, "same_as_reference")["average_iterations"]);
+
+  write_text(dir / "bench.yaml", R"(base_case: flow_structure/case.yaml
+reference:
+  tolerance: 1.0e-8
+  convergence_criterion: {type: absolute_norm, tolerance: 1.0e-9}
+variants: [{name: a}]
+)");
+  result = run_cocopp("bench " + (dir / "bench.yaml").string());
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_NE(result.output.find("bench.yaml:3:"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("not both"), std::string::npos) << result.output;
+  fs::remove_all(dir);
+}
+
 TEST(CocoppBench, InvalidFileNamesTheKey) {
   const fs::path dir = bench_directory("bench_invalid", R"(base_case: flow_structure/case.yaml
 variants:
