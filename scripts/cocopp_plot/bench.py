@@ -3,8 +3,10 @@ wall time (start-up included), coupling iterations (what the algorithm saves, fr
 noise) and the solvers' time (what the iterations cost in the solvers)."""
 import json
 import math
+import os
 
 import matplotlib.pyplot as plt
+from matplotlib.ticker import FormatStrFormatter, NullFormatter
 
 COSTS = [("wall_time", "wall time [s]"),
          ("iterations", "coupling iterations (all steps)"),
@@ -24,6 +26,18 @@ def cost(run, key):
 def load(path):
     with open(path) as f:
         return json.load(f)
+
+
+def plain_tick_labels(axis, limits):
+    """Within a decade (runs of similar cost) matplotlib labels every minor tick of a log axis
+    in scientific notation and the labels run into each other: plain numbers then, on the
+    minor ticks too; over decades, the decades only."""
+    low, high = limits
+    if low > 0 and high / low < 10:
+        axis.set_major_formatter(FormatStrFormatter("%g"))
+        axis.set_minor_formatter(FormatStrFormatter("%g"))
+    else:
+        axis.set_minor_formatter(NullFormatter())
 
 
 def plot_bench(bench, output, error="displacement", include_reference=False):
@@ -53,10 +67,11 @@ def plot_bench(bench, output, error="displacement", include_reference=False):
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.margins(x=0.2, y=0.2)
+        plain_tick_labels(ax.xaxis, ax.get_xlim())
         ax.set_xlabel(cost_label)
         ax.grid(True, which="both", alpha=0.3)
     axes[0].set_ylabel(f"relative {error} error (L2 over space and time)")
-    figure.suptitle(f"cocopp bench: {bench.get('bench_file', '')}", fontsize=9)
+    figure.suptitle(f"cocopp bench: {os.path.basename(bench.get('bench_file', ''))}", fontsize=9)
     if missing:
         figure.text(0.01, 0.01, "no error: " + ", ".join(
             f"{r['name']} ({r['status']})" for r in missing), fontsize=8)
