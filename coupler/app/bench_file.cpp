@@ -91,7 +91,12 @@ void read_reference(const Settings& root, BenchFile& b) {
     if (reference.has("tolerance"))
       reference.fail("tolerance", "give either 'convergence_criterion' or 'tolerance', not both");
     reference.allow("convergence_criterion");
-    b.reference_criterion = YAML::Clone(reference.node()["convergence_criterion"]);
+    const YAML::Node criterion = reference.node()["convergence_criterion"];
+    if (!criterion.IsMap())
+      reference.fail(
+          "convergence_criterion",
+          "must be a criterion's mapping, e.g. {type: absolute_norm, tolerance: 1.0e-9}");
+    b.reference_criterion = YAML::Clone(criterion);
   } else {
     b.reference_tolerance = reference.get_in_range("tolerance", 1e-10, Range::positive());
   }

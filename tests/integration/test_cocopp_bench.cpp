@@ -145,6 +145,16 @@ variants: [{name: a}]
   EXPECT_EQ(result.exit_code, 2) << result.output;
   EXPECT_NE(result.output.find("bench.yaml:3:"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("not both"), std::string::npos) << result.output;
+
+  write_text(dir / "bench.yaml", R"(base_case: flow_structure/case.yaml
+reference: {convergence_criterion: 1.0e-9}
+variants: [{name: a}]
+)");
+  result = run_cocopp("bench " + (dir / "bench.yaml").string());
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_NE(result.output.find("reference.convergence_criterion"), std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("absolute_norm"), std::string::npos) << result.output;
   fs::remove_all(dir);
 }
 
