@@ -20,7 +20,9 @@ done
 [ ${#targets[@]} -gt 0 ] || targets=(case_file protocol calculix_deck calculix_dat openfoam_dictionary)
 
 build_dir=${FUZZ_BUILD_DIR:-build-fuzz}
-CC=clang-14 CXX=clang++-14 cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Fuzz \
+# shellcheck source=scripts/lib/compiler-cache.sh
+source scripts/lib/compiler-cache.sh
+CC=clang-14 CXX=clang++-14 cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Fuzz "${compiler_cache[@]}" \
   -DCMAKE_CXX_FLAGS_FUZZ="-O1 -g1" -DCMAKE_C_FLAGS_FUZZ="-O1 -g1" -DCOCOPP_FUZZ=ON \
   -DCOCOPP_BUILD_BENCHMARKS=OFF -DCOCOPP_WITH_OPENFOAM=OFF -DCOCOPP_WITH_CALCULIX=OFF >/dev/null
 cmake --build "$build_dir" -j "$(nproc)" --target cocopp_fuzz_targets

@@ -8,6 +8,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config
+  ccache  # CI compiles a fresh clone: unchanged files come from the cache (scripts/lib/compiler-cache.sh)
   dpkg-dev  # dpkg-shlibdeps, for the Debian package (cpack)
   libeigen3-dev libyaml-cpp-dev libhdf5-dev hdf5-tools
   libcli11-dev libfmt-dev nlohmann-json3-dev libnanoflann-dev
