@@ -56,20 +56,22 @@ make_openfoam_wedge() {
     openfoam_wedge_vs_1d.png
 }
 
-make_wire_drawing_bench() {  # the case as it ships: the wire driven by displacement
-  local example="$root/examples/wire_drawing"
-  "$example/bench.sh" "${coarse_wire[@]}"
+wire_drawing_bench() {  # wire_drawing_bench <image> <bench.sh options>: run, plot, publish
+  local example="$root/examples/wire_drawing" image=$1
+  shift
+  "$example/bench.sh" "$@"
   "$python" "$root/scripts/plot_bench.py" "$example/results/bench/bench.json" \
     -o "$example/results/bench/bench.png"
-  publish "$example/results/bench/bench.png" wire-drawing-bench.png
+  publish "$example/results/bench/bench.png" "$image"
+}
+
+make_wire_drawing_bench() {  # the case as it ships: the wire driven by displacement
+  wire_drawing_bench wire-drawing-bench.png "${coarse_wire[@]}"
 }
 
 make_wire_drawing_bench_load_driven() {  # the paper's load-driven wire (into the same results/bench)
-  local example="$root/examples/wire_drawing"
-  "$example/bench.sh" --bench bench_load_driven.yaml "${coarse_wire[@]}" "${load_driven_wire[@]}"
-  "$python" "$root/scripts/plot_bench.py" "$example/results/bench/bench.json" \
-    -o "$example/results/bench/bench.png"
-  publish "$example/results/bench/bench.png" wire-drawing-bench-load-driven.png
+  wire_drawing_bench wire-drawing-bench-load-driven.png --bench bench_load_driven.yaml \
+    "${coarse_wire[@]}" "${load_driven_wire[@]}"
 }
 
 make_wire_drawing() {

@@ -1,5 +1,7 @@
 #include "coupler/app/bench_file.hpp"
 
+#include <fmt/format.h>
+
 #include <regex>
 #include <set>
 
@@ -98,7 +100,9 @@ void read_reference(const Settings& root, BenchFile& b) {
           "must be a criterion's mapping, e.g. {type: absolute_norm, tolerance: 1.0e-9}");
     b.reference_criterion = YAML::Clone(criterion);
   } else {
-    b.reference_tolerance = reference.get_in_range("tolerance", 1e-10, Range::positive());
+    b.reference_criterion =
+        YAML::Load(fmt::format("{{type: relative_norm, tolerance: {:.17g}}}",
+                               reference.get_in_range("tolerance", 1e-10, Range::positive())));
   }
 }
 

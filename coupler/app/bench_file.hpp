@@ -41,10 +41,9 @@ struct BenchFile {
   fs::path base_case;
   fs::path output_directory;
   ReferenceKind reference = ReferenceKind::kComputed;
-  fs::path reference_results;          ///< kGiven
-  double reference_tolerance = 1e-10;  ///< kComputed: relative_norm, unless criterion is given
-  YAML::Node reference_criterion;      ///< kComputed: the case's own criterion for the reference
-  Changes changes;                     ///< applied to every run, the references included
+  fs::path reference_results;      ///< kGiven
+  YAML::Node reference_criterion;  ///< kComputed: what the reference converges to
+  Changes changes;                 ///< applied to every run, the references included
   std::vector<BenchCase> cases;
   std::vector<Variant> variants;
 };

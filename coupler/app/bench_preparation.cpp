@@ -12,19 +12,12 @@ namespace cocopp {
 
 namespace {
 
-/// The base case's coupled solver with a tight criterion: a converged solution to compare with.
-/// The bench file's own criterion where it gives one, else the relative tolerance; an iteration
-/// limit of 100 either way, so that a reference that cannot get there still ends.
+/// The base case's coupled solver with the bench file's tight criterion: a converged solution
+/// to compare with; an iteration limit of 100 too, so that a reference that cannot get there
+/// still ends.
 YAML::Node reference_coupled_solver(const YAML::Node& base, const BenchFile& bench) {
-  // (A default YAML::Node is a defined null, and yaml-cpp's assignment writes through shared
-  // nodes: hence IsMap and a fresh node rather than reassigning one.)
-  const YAML::Node tight =
-      bench.reference_criterion.IsMap()
-          ? YAML::Clone(bench.reference_criterion)
-          : YAML::Load(fmt::format("{{type: relative_norm, tolerance: {:.17g}}}",
-                                   bench.reference_tolerance));
   YAML::Node criterion = YAML::Load("{type: or}");
-  criterion["criteria"].push_back(tight);
+  criterion["criteria"].push_back(YAML::Clone(bench.reference_criterion));
   criterion["criteria"].push_back(YAML::Load("{type: iteration_limit, maximum: 100}"));
   YAML::Node out = YAML::Clone(base);
   out["convergence_criterion"] = criterion;
