@@ -32,7 +32,8 @@ if(COCOPP_HAVE_CALCULIX)
                            test_calculix_displacement_drive.cpp
                    LIBS cocopp_solver_wrappers LABELS ccx)
   if(COCOPP_HAVE_PATCHED_CCX)  # the restart of plastic models needs the patched ccx
-    target_compile_definitions(${COCOPP_LAST_TEST} PRIVATE COCOPP_HAVE_PATCHED_CCX=1)
+    target_compile_definitions(${COCOPP_LAST_TEST} PRIVATE COCOPP_HAVE_PATCHED_CCX=1
+                               COCOPP_PATCHED_CCX="${COCOPP_CALCULIX_DIR}/bin/ccx")
   endif()
 endif()
 cocopp_unit_test(solver_wrappers/tube

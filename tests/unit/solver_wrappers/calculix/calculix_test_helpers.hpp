@@ -110,7 +110,7 @@ inline std::map<double, std::vector<std::vector<double>>> dat_blocks(
   std::vector<std::vector<double>>* block = nullptr;
   std::string line;
   while (std::getline(in, line)) {
-    const auto at = line.find(" for set " + set + " and time ");
+    const auto at = line.find("for set " + set + " and time ");  // "...,pe)for set": no space
     if (line.find(quantity) != std::string::npos && at != std::string::npos) {
       const double time = std::stod(line.substr(line.rfind(' ')));
       block = &blocks[time];

@@ -6,8 +6,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <map>
 #include <sstream>
+#include <vector>
 
 #include "solver_wrappers/calculix/calculix_solver_wrapper.hpp"
 #include "solver_wrappers/calculix/ccx_run.hpp"
@@ -237,6 +239,89 @@ TEST(CalculixCcx, NonConvergenceRejectsTheInputAndKeepsTheStepStart) {
   const RowMatrix after = test.solve(0.6 * cylinder.yield_onset_pressure());
   EXPECT_LT((after - before).cwiseAbs().maxCoeff(), 1e-9 * before.cwiseAbs().maxCoeff());
 }
+
+#ifdef COCOPP_HAVE_PATCHED_CCX
+/// The Newton iterations of every increment in a .sta file ("STEP INC ATT ITRS ...").
+std::vector<int> newton_iterations(const std::filesystem::path& sta_file) {
+  std::ifstream in(sta_file);
+  std::vector<int> iterations;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream fields(line);
+    int step = 0, increment = 0;
+    std::string attempt;
+    int newton = 0;
+    if (fields >> step >> increment >> attempt >> newton) iterations.push_back(newton);
+  }
+  return iterations;
+}
+
+/// Runs `deck` as <directory>/<job>.inp with `executable`; its .dat and .sta files.
+void run_deck(const std::filesystem::path& executable, const std::filesystem::path& directory,
+              const std::string& deck) {
+  std::filesystem::create_directories(directory);
+  testing::write_text(directory / "job.inp", deck);
+  const auto result =
+      calculix::run_ccx({executable, directory, "job", directory / "job.log", 2, 600.0});
+  ASSERT_EQ(result.status, calculix::CcxRunResult::Status::kSuccess) << result.details;
+}
+
+// 04-nonlinear-anisotropic-stiffness.patch assembles the NLGEOM stiffness of a plastic solid
+// (ccx's anisotropic tangent) from coefficients taken once per integration point. The
+// cylinder pressed well past yield (1.6 times the onset pressure), with full and reduced
+// integration, takes the same Newton iterations in every increment as with Debian's ccx and
+// ends at the same displacements to the printed digits (the sums differ in order only). A
+// wrong coefficient shows in both: a tangent off by a little costs Newton iterations.
+TEST(PatchedCcx, PlasticNlgeomStiffnessIsDebiansToRoundOff) {
+  if (!std::filesystem::exists("/usr/bin/ccx")) GTEST_SKIP() << "no Debian ccx in /usr/bin";
+  testing::TemporaryDirectory directory;
+  for (const std::string element_type : {"C3D20", "C3D20R"}) {
+    SCOPED_TRACE(element_type);
+    SectorCylinder cylinder;
+    cylinder.element_type = element_type;
+    cylinder.yield_stress = kYield;
+    cylinder.nlgeom = true;
+    cylinder.increments = "0.1, 1.0";
+    // Collapse (2 / sqrt(3) ln(ro / ri) sigma_y) is at 1.85 times the onset.
+    const double pressure = 1.6 * cylinder.yield_onset_pressure();
+    cylinder.extra_step_cards = "*DLOAD\nINNER, P, " + std::to_string(pressure) +
+                                "\n*NODE PRINT, NSET=NALL\nU\n*EL PRINT, ELSET=EALL\nPEEQ\n";
+    const std::string deck = cylinder.deck();
+    const auto patched = directory / (element_type + "-patched");
+    const auto debian = directory / (element_type + "-debian");
+    run_deck(COCOPP_PATCHED_CCX, patched, deck);
+    run_deck("/usr/bin/ccx", debian, deck);
+
+    const std::vector<int> iterations = newton_iterations(patched / "job.sta");
+    EXPECT_GE(iterations.size(), 5U);
+    EXPECT_EQ(iterations, newton_iterations(debian / "job.sta"));
+    const auto u_patched = dat_blocks(patched / "job.dat", "displacements", "NALL");
+    const auto u_debian = dat_blocks(debian / "job.dat", "displacements", "NALL");
+    ASSERT_EQ(u_patched.size(), iterations.size());
+    ASSERT_EQ(u_debian.size(), u_patched.size());
+    for (auto a = u_patched.begin(), b = u_debian.begin(); a != u_patched.end(); ++a, ++b) {
+      ASSERT_EQ(a->second.size(), b->second.size());
+      double largest = 0.0, difference = 0.0;
+      for (std::size_t n = 0; n < a->second.size(); ++n)
+        for (std::size_t c = 1; c < 4; ++c) {
+          largest = std::max(largest, std::abs(a->second[n].at(c)));
+          difference = std::max(difference, std::abs(a->second[n].at(c) - b->second[n].at(c)));
+        }
+      EXPECT_LE(difference, kDatPrecision * largest) << "at time " << a->first;
+    }
+    // Plastic in the inner part of the wall (90 of 216 integration points with C3D20, 28 of 32
+    // with C3D20R): the anisotropic tangent is what was assembled there.
+    const auto peeq = dat_blocks(patched / "job.dat", "equivalent plastic strain", "EALL");
+    ASSERT_FALSE(peeq.empty());
+    int plastic_points = 0, points = 0;
+    for (const auto& row : peeq.rbegin()->second) {
+      ++points;
+      if (row.at(2) > 0.0) ++plastic_points;
+    }
+    EXPECT_GT(plastic_points, points / 3);
+  }
+}
+#endif
 
 }  // namespace
 }  // namespace cocopp
