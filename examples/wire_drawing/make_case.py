@@ -546,6 +546,8 @@ def solver_wrappers(p, prefix):
       interface_surface: SURFACE
       interface_node_set: SURFACEN
       threads: {p['calculix']['threads']}                    # the film waits while the wire is solved
+      initial_increment: previous_iteration  # where ccx cut a step back, the step's next
+                                  # iterations start at the increment that converged
 {wire_drive_keys(p)}      timeout: 600
 {input_mappers(p)}{round_trip_keys(p)}    output_mapper:                # wire surface nodes (r, axis) -> film wall points (wedge)
       type: linear

@@ -14,6 +14,7 @@
 #include "core/data/restart_file.hpp"
 #include "solver_wrappers/calculix/ccx_run.hpp"
 #include "solver_wrappers/calculix/dat_file.hpp"
+#include "solver_wrappers/calculix/sta_file.hpp"
 #include "solver_wrappers/process/child_process.hpp"
 #include "solver_wrappers/process/process_solver_wrapper.hpp"
 #include "solver_wrappers/solver_error.hpp"
@@ -148,6 +149,11 @@ CalculixSolverWrapper::CalculixSolverWrapper(const Settings& settings, const Run
   timeout_ = settings.get_in_range("timeout", 600.0, Range::timeout());
   save_results_ = settings.get<bool>("save_results", true);
   allow_reduced_integration_ = settings.get<bool>("allow_reduced_integration", false);
+  carry_initial_increment_ =
+      settings.get_choice("initial_increment", "deck", {"deck", "previous_iteration"}) ==
+      "previous_iteration";
+  initial_increment_where_ =
+      settings.has("initial_increment") ? settings.where("initial_increment") : settings.where();
   state_reset_key_ = settings.get_choice("state_reset", "auto", {"auto", "restart", "replay"});
   state_reset_where_ =
       settings.has("state_reset") ? settings.where("state_reset") : settings.where();
@@ -262,6 +268,12 @@ void CalculixSolverWrapper::read_deck() {
           "they must be equal",
           deck_->step().front().where, deck_->step_time_period(), run_.delta_t));
     check_dynamic_elements();
+    if (carry_initial_increment_ && !deck_->procedure_data_line())
+      throw CaseError(fmt::format(
+          "{}: initial_increment: previous_iteration, but the *{} card of {} has no data line "
+          "to carry the increment on: give it one (initial increment, time period, ...) or "
+          "remove the key",
+          initial_increment_where_, deck_->procedure(), input_file_));
     loads_ = std::make_unique<calculix::InterfaceLoads>(*deck_, deck_->surface(surface_name_));
     if (loads_->faces().empty())
       throw calculix::DeckError("surface " + surface_name_ + " has no faces");
@@ -352,6 +364,7 @@ void CalculixSolverWrapper::build_interfaces() {
 void CalculixSolverWrapper::initialize_step(int step, double /*time*/) {
   step_ = step;
   iteration_ = 0;
+  carried_increment_.reset();  // a new step tries the deck's initial increment first
 }
 
 void CalculixSolverWrapper::start_reporting_convergence() {
@@ -383,6 +396,14 @@ const Interface& CalculixSolverWrapper::solve(const Interface& input) {
   run_ccx();
 
   const auto read_start = Clock::now();
+  // Where ccx's first attempt at the deck's increment failed and it cut back, the step's next
+  // iterations (loads close to this one's) start at the increment that converged: the same
+  // increments, so the same answer, without the failed attempt's Newton iterations.
+  if (carry_initial_increment_) {
+    const auto increment =
+        calculix::first_converged_increment(calculix::read_sta(file(std::string(kJob) + ".sta")));
+    if (increment) carried_increment_ = increment;
+  }
   try {
     const RowMatrix displacement =
         calculix::read_node_print(results, "displacements", node_set_name_, interface_nodes_);
@@ -458,7 +479,14 @@ void CalculixSolverWrapper::write_iteration_deck() const {
 
 void CalculixSolverWrapper::write_step(std::ofstream& out, const std::string& loads_file,
                                        bool print) const {
-  const auto& step = deck_->step();
+  std::vector<calculix::DeckLine> step = deck_->step();
+  // The step being solved starts with the carried increment; replayed steps as the deck says.
+  if (print && carried_increment_) {
+    std::string& data = step.at(*deck_->procedure_data_line()).text;
+    const auto comma = data.find(',');
+    data = fmt::format("{:.17g}", *carried_increment_) +
+           (comma == std::string::npos ? "" : data.substr(comma));
+  }
   write_lines(out, {step.begin(), step.end() - 1});  // all but *END STEP
   out << "*INCLUDE, INPUT=" << loads_file << "\n";
   if (print) out << "*NODE PRINT, NSET=" << node_set_name_ << ", GLOBAL=YES\nU\n";

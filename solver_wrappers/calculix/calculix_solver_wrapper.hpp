@@ -29,6 +29,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -118,7 +119,8 @@ class CalculixSolverWrapper : public SolverWrapper {
   std::string driven_node_set_name_;  ///< the nodes that may be driven (default: the interface's)
   std::vector<std::int64_t> driven_node_set_;
   double surface_stiffness_ = 0.0;
-  std::string working_directory_where_, input_file_where_, executable_where_, state_reset_where_;
+  std::string working_directory_where_, input_file_where_, executable_where_, state_reset_where_,
+      initial_increment_where_;
   RunSettings run_;
 
   // From the deck.
@@ -134,6 +136,10 @@ class CalculixSolverWrapper : public SolverWrapper {
   int iteration_ = 0;
   bool has_converged_restart_ = false;        ///< restart: a committed step exists to restart from
   std::vector<std::string> committed_loads_;  ///< replay: each committed step's loads file
+  /// initial_increment: previous_iteration: the first increment that converged in this time
+  /// step's last ccx run, which the next coupling iteration starts with.
+  bool carry_initial_increment_ = false;
+  std::optional<double> carried_increment_;
   Interface input_interface_;
   Interface output_interface_;
   Timing last_timing_;

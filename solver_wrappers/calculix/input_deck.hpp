@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -72,6 +73,9 @@ class InputDeck {
   /// The step's procedure, e.g. "STATIC" or "DYNAMIC", and its time period (0 if not given).
   const std::string& procedure() const { return procedure_; }
   double step_time_period() const { return step_time_period_; }
+  /// Index in step() of the procedure's first data line (initial increment, period, ...), if
+  /// the deck gives one.
+  std::optional<std::size_t> procedure_data_line() const { return procedure_data_line_; }
   /// Whether the *STEP card has NLGEOM: ccx applies pressures on the deformed faces.
   bool nonlinear_geometry() const { return nonlinear_geometry_; }
   /// Whether the model definition has a card with this keyword (upper case, e.g. "PLASTIC").
@@ -100,6 +104,7 @@ class InputDeck {
   std::set<std::string> keywords_;  ///< of the model definition
   std::string procedure_;
   double step_time_period_ = 0.0;
+  std::optional<std::size_t> procedure_data_line_;
   bool nonlinear_geometry_ = false;
   std::string file_;
 };

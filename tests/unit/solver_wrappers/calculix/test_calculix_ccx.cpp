@@ -13,6 +13,7 @@
 
 #include "solver_wrappers/calculix/calculix_solver_wrapper.hpp"
 #include "solver_wrappers/calculix/ccx_run.hpp"
+#include "solver_wrappers/calculix/sta_file.hpp"
 #include "solver_wrappers/process/child_process.hpp"
 #include "tests/support/error_message.hpp"
 #include "tests/unit/solver_wrappers/calculix/calculix_test_helpers.hpp"
@@ -238,6 +239,72 @@ TEST(CalculixCcx, NonConvergenceRejectsTheInputAndKeepsTheStepStart) {
   EXPECT_CONTAINS(message, "what to change: a smaller time step (settings.delta_t)");
   const RowMatrix after = test.solve(0.6 * cylinder.yield_onset_pressure());
   EXPECT_LT((after - before).cwiseAbs().maxCoeff(), 1e-9 * before.cwiseAbs().maxCoeff());
+}
+
+/// The .sta attempts and the *STATIC data line of the wrapper's last ccx run.
+struct LastRun {
+  std::vector<calculix::IncrementAttempt> attempts;
+  std::string static_line;
+  int newton_iterations() const {
+    int total = 0;
+    for (const auto& attempt : attempts) total += attempt.newton_iterations;
+    return total;
+  }
+};
+
+LastRun last_run(const CalculixCase& test) {
+  LastRun run{calculix::read_sta(test.path("wall/cocopp_iteration.sta")), {}};
+  std::ifstream deck(test.path("wall/cocopp_iteration.inp"));
+  std::string line;
+  while (std::getline(deck, line))
+    if (line == "*STATIC") std::getline(deck, run.static_line);
+  return run;
+}
+
+// The cylinder pressed in one full increment to 1.6 times its yield onset, with ccx allowed 3
+// Newton iterations an increment (*CONTROLS): the full increment needs 4, so ccx cuts it back
+// ("1U") and goes on in halves. With initial_increment: previous_iteration the step's
+// second coupling iteration starts at the increment that converged: no failed attempt, fewer
+// Newton iterations, the same increments and so the same displacements; the next time step
+// tries the deck's increment again. Without the key every iteration repeats the failure.
+TEST(CalculixCcx, CarriedInitialIncrementSkipsTheCutBack) {
+  SectorCylinder cylinder;
+  cylinder.yield_stress = kYield;
+  cylinder.nlgeom = true;
+  cylinder.increments = "1.0, 1.0";
+  cylinder.extra_step_cards =
+      "*CONTROLS, PARAMETERS=TIME INCREMENTATION\n3, 3, 9, 3, 10, 4, 0, 5\n";
+  const double p = 1.6 * cylinder.yield_onset_pressure();
+  for (const bool carry : {false, true}) {
+    SCOPED_TRACE(carry ? "carried" : "the deck's");
+    CalculixCase test;
+    test.start(cylinder.deck(), carry ? "initial_increment: previous_iteration\n" : "");
+    const RowMatrix first = test.solve(p);
+    const LastRun first_run = last_run(test);
+    ASSERT_FALSE(first_run.attempts.empty());
+    ASSERT_FALSE(first_run.attempts.front().converged) << "the full increment should fail";
+    EXPECT_EQ(first_run.static_line, "1.0, 1.0");
+
+    const RowMatrix second = test.solve(p);
+    const LastRun second_run = last_run(test);
+    EXPECT_LE((second - first).cwiseAbs().maxCoeff(), kDatPrecision * first.cwiseAbs().maxCoeff());
+    if (!carry) {
+      EXPECT_FALSE(second_run.attempts.front().converged);
+      EXPECT_EQ(second_run.newton_iterations(), first_run.newton_iterations());
+      continue;
+    }
+    const double carried = *calculix::first_converged_increment(first_run.attempts);
+    EXPECT_LT(carried, 1.0);
+    EXPECT_DOUBLE_EQ(std::stod(second_run.static_line), carried);
+    EXPECT_EQ(second_run.static_line.substr(second_run.static_line.find(',')), ", 1.0");
+    for (const auto& attempt : second_run.attempts) EXPECT_TRUE(attempt.converged);
+    EXPECT_LT(second_run.newton_iterations(), first_run.newton_iterations());
+
+    test.wrapper().finalize_step();
+    test.wrapper().initialize_step(2, 2.0);
+    test.solve(p);
+    EXPECT_EQ(last_run(test).static_line, "1.0, 1.0");
+  }
 }
 
 #ifdef COCOPP_HAVE_PATCHED_CCX

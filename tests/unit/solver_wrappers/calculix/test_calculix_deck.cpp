@@ -11,6 +11,7 @@
 #include "solver_wrappers/calculix/element_faces.hpp"
 #include "solver_wrappers/calculix/input_deck.hpp"
 #include "solver_wrappers/calculix/interface_loads.hpp"
+#include "solver_wrappers/calculix/sta_file.hpp"
 #include "tests/support/error_message.hpp"
 #include "tests/unit/solver_wrappers/calculix/calculix_test_helpers.hpp"
 
@@ -280,6 +281,31 @@ TEST(DatFile, ReadsTheLastBlockOfTheSet) {
                std::runtime_error);
 }
 
+// A restarted step 80 whose full increment diverged ("1U") and converged at a quarter.
+TEST(StaFile, ReadsTheAttemptsAndTheFirstConvergedIncrement) {
+  TemporaryDirectory directory;
+  write_text(directory / "job.sta",
+             "SUMMARY OF JOB INFORMATION\n"
+             "  STEP      INC     ATT  ITRS     TOT TIME     STEP TIME      INC TIME\n"
+             "    80          1     1U    4  0.790000E-02  0.000000E+00  0.100000E-03\n"
+             "    80          1     2     4  0.792500E-02  0.250000E-04  0.250000E-04\n"
+             "    80          2     1     3  0.795000E-02  0.500000E-04  0.250000E-04\n"
+             "    80          3     1     2  0.798750E-02  0.875000E-04  0.375000E-04\n");
+  const auto attempts = calculix::read_sta(directory / "job.sta");
+  ASSERT_EQ(attempts.size(), 4U);
+  EXPECT_FALSE(attempts[0].converged);
+  EXPECT_EQ(attempts[0].newton_iterations, 4);
+  EXPECT_TRUE(attempts[1].converged);
+  EXPECT_EQ(attempts[3].increment, 3);
+  EXPECT_DOUBLE_EQ(*calculix::first_converged_increment(attempts), 0.25e-4);
+  // A replayed run lists the committed steps first: the last step's increment counts.
+  write_text(directory / "replay.sta",
+             "    1          1     1     2  0.100000E+01  0.100000E+01  0.100000E+01\n"
+             "    2          1     1U    5  0.100000E+01  0.000000E+00  0.100000E+01\n");
+  EXPECT_FALSE(calculix::first_converged_increment(calculix::read_sta(directory / "replay.sta")));
+  EXPECT_TRUE(calculix::read_sta(directory / "none.sta").empty());
+}
+
 TEST(CcxErrors, QuotesEachErrorMessage) {
   const std::string log =
       " *WARNING reading *STATIC:\n   changed\n\n *ERROR reading *DLOAD: element set\n"
@@ -376,6 +402,19 @@ TEST_F(CalculixWithoutCcx, CaseKeysAreChecked) {
   test_.create(cylinder_.deck(), fake_ccx("exit 0"), "NOSUCH");
   EXPECT_CONTAINS(testing::error_message<CaseError>([&] { test_.wrapper().initialize(); }),
                   "no element-face surface NOSUCH");
+}
+
+TEST_F(CalculixWithoutCcx, CarriedIncrementNeedsTheProcedureDataLine) {
+  std::string deck = cylinder_.deck();
+  deck.erase(deck.find("0.25, 1.0\n"), 10);  // *STATIC without data: ccx's defaults
+  test_.create(deck, "executable: /bin/true\ninitial_increment: previous_iteration\n");
+  const std::string message =
+      testing::error_message<CaseError>([&] { test_.wrapper().initialize(); });
+  EXPECT_CONTAINS(message, "case.yaml:");
+  EXPECT_CONTAINS(message, "the *STATIC card of wall.inp has no data line");
+  EXPECT_CONTAINS(testing::error_message<CaseError>(
+                      [&] { test_.create(cylinder_.deck(), "initial_increment: last\n"); }),
+                  "initial_increment");
 }
 
 TEST_F(CalculixWithoutCcx, DynamicStepMustSpanTheCouplingTimeStep) {
