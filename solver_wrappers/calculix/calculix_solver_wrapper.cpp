@@ -400,8 +400,8 @@ const Interface& CalculixSolverWrapper::solve(const Interface& input) {
   // iterations (loads close to this one's) start at the increment that converged: the same
   // increments, so the same answer, without the failed attempt's Newton iterations.
   if (carry_initial_increment_) {
-    const auto increment =
-        calculix::first_converged_increment(calculix::read_sta(file(std::string(kJob) + ".sta")));
+    const auto increment = calculix::carried_initial_increment(
+        calculix::read_sta(file(std::string(kJob) + ".sta")), deck_->initial_increment());
     if (increment) carried_increment_ = increment;
   }
   try {

@@ -364,11 +364,15 @@ void InputDeck::read_solid_section(const Card& card) {
 void InputDeck::read_procedure(const Card& card) {
   procedure_ = card.keyword;
   step_time_period_ = 1.0;  // ccx's default
+  initial_increment_ = step_time_period_;
   if (card.data.empty()) return;
   procedure_data_line_ = step_.size() - card.data.size();  // the card and its data are in step_
   const auto fields = split_commas(card.data[0].text);
   if (fields.size() >= 2 && !fields[1].empty())
     step_time_period_ = parse_number(fields[1], card.data[0].where);
+  initial_increment_ = !fields.empty() && !fields[0].empty()
+                           ? parse_number(fields[0], card.data[0].where)
+                           : step_time_period_;
 }
 
 const Eigen::Vector3d& InputDeck::node(std::int64_t id) const {

@@ -76,6 +76,9 @@ class InputDeck {
   /// Index in step() of the procedure's first data line (initial increment, period, ...), if
   /// the deck gives one.
   std::optional<std::size_t> procedure_data_line() const { return procedure_data_line_; }
+  /// The procedure's initial increment (its data line's first value; the time period if not
+  /// given, as ccx does).
+  double initial_increment() const { return initial_increment_; }
   /// Whether the *STEP card has NLGEOM: ccx applies pressures on the deformed faces.
   bool nonlinear_geometry() const { return nonlinear_geometry_; }
   /// Whether the model definition has a card with this keyword (upper case, e.g. "PLASTIC").
@@ -105,6 +108,7 @@ class InputDeck {
   std::string procedure_;
   double step_time_period_ = 0.0;
   std::optional<std::size_t> procedure_data_line_;
+  double initial_increment_ = 0.0;
   bool nonlinear_geometry_ = false;
   std::string file_;
 };

@@ -1,5 +1,6 @@
 #include "solver_wrappers/calculix/sta_file.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -31,6 +32,13 @@ std::optional<double> first_converged_increment(const std::vector<IncrementAttem
   for (const auto& attempt : attempts)
     if (attempt.step == last_step && attempt.converged) return attempt.increment_time;
   return std::nullopt;
+}
+
+std::optional<double> carried_initial_increment(const std::vector<IncrementAttempt>& attempts,
+                                                double deck_initial) {
+  const auto first = first_converged_increment(attempts);
+  if (!first) return std::nullopt;
+  return std::max(*first, 0.25 * deck_initial);
 }
 
 }  // namespace cocopp::calculix

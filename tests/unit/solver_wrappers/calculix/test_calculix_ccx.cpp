@@ -310,16 +310,9 @@ TEST(CalculixCcx, CarriedInitialIncrementSkipsTheCutBack) {
 #ifdef COCOPP_HAVE_PATCHED_CCX
 /// The Newton iterations of every increment in a .sta file ("STEP INC ATT ITRS ...").
 std::vector<int> newton_iterations(const std::filesystem::path& sta_file) {
-  std::ifstream in(sta_file);
   std::vector<int> iterations;
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream fields(line);
-    int step = 0, increment = 0;
-    std::string attempt;
-    int newton = 0;
-    if (fields >> step >> increment >> attempt >> newton) iterations.push_back(newton);
-  }
+  for (const auto& attempt : calculix::read_sta(sta_file))
+    iterations.push_back(attempt.newton_iterations);
   return iterations;
 }
 

@@ -83,6 +83,9 @@ TEST_F(DeckTest, ReadsMeshSetsSurfacesIncludesAndTheStep) {
   EXPECT_EQ(deck.surface("TOP")[1].face, 3);
   EXPECT_EQ(deck.procedure(), "STATIC");
   EXPECT_DOUBLE_EQ(deck.step_time_period(), 2.0);
+  EXPECT_DOUBLE_EQ(deck.initial_increment(), 0.5);
+  ASSERT_TRUE(deck.procedure_data_line());
+  EXPECT_EQ(deck.step().at(*deck.procedure_data_line()).text, "0.5, 2.0");
   EXPECT_EQ(deck.step().front().text, "*STEP");
   EXPECT_EQ(deck.step().back().text, "*END STEP");
   EXPECT_TRUE(deck.has_keyword("ELEMENT"));
@@ -298,11 +301,16 @@ TEST(StaFile, ReadsTheAttemptsAndTheFirstConvergedIncrement) {
   EXPECT_TRUE(attempts[1].converged);
   EXPECT_EQ(attempts[3].increment, 3);
   EXPECT_DOUBLE_EQ(*calculix::first_converged_increment(attempts), 0.25e-4);
+  EXPECT_DOUBLE_EQ(*calculix::carried_initial_increment(attempts, 1e-4), 0.25e-4);
+  // Deeper cut-backs are carried as one: a quarter of the deck's increment.
+  EXPECT_DOUBLE_EQ(*calculix::carried_initial_increment(attempts, 4e-4), 1e-4);
   // A replayed run lists the committed steps first: the last step's increment counts.
   write_text(directory / "replay.sta",
              "    1          1     1     2  0.100000E+01  0.100000E+01  0.100000E+01\n"
              "    2          1     1U    5  0.100000E+01  0.000000E+00  0.100000E+01\n");
   EXPECT_FALSE(calculix::first_converged_increment(calculix::read_sta(directory / "replay.sta")));
+  EXPECT_FALSE(
+      calculix::carried_initial_increment(calculix::read_sta(directory / "replay.sta"), 1.0));
   EXPECT_TRUE(calculix::read_sta(directory / "none.sta").empty());
 }
 
