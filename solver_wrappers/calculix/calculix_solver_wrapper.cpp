@@ -484,7 +484,7 @@ void CalculixSolverWrapper::write_step(std::ofstream& out, const std::string& lo
   if (print && carried_increment_) {
     std::string& data = step.at(*deck_->procedure_data_line()).text;
     const auto comma = data.find(',');
-    data = fmt::format("{:.17g}", *carried_increment_) +
+    data = calculix::ccx_number(*carried_increment_) +
            (comma == std::string::npos ? "" : data.substr(comma));
   }
   write_lines(out, {step.begin(), step.end() - 1});  // all but *END STEP
