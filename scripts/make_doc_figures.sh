@@ -24,7 +24,7 @@ figures=(
   "openfoam_wedge|OpenFOAM|1 min|docs/solver-wrappers-openfoam.md"
   "wire_drawing_bench|OpenFOAM and CalculiX|20 min|docs/wire-drawing.md"
   "wire_drawing_bench_load_driven|OpenFOAM and CalculiX|8 min|docs/wire-drawing.md"
-  "wire_drawing|OpenFOAM and CalculiX|2.5 hours|docs/wire-drawing.md"
+  "wire_drawing|OpenFOAM and CalculiX|75 min|docs/wire-drawing.md"
 )
 
 publish() {  # publish <file under results/> <name in docs/images>
