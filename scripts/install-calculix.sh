@@ -4,9 +4,9 @@
 # (scripts/calculix/*.patch, applied in name order: restart files keep the material state
 # variables, so a plastic model restarts exactly, and the axisymmetry flag, so that a CAX model
 # restarts at all; a plastic NLGEOM stiffness assembled in a fraction of the time). The source
-# is fetched into build-deps/ (outside git, never committed); the
-# binary goes to build-deps/calculix/bin/ccx, which CMake finds and the
-# calculix wrapper uses by default (docs/solver-wrappers-calculix.md, "State reset").
+# is fetched into build-deps/ (outside git, never committed); the binary goes to
+# build-deps/calculix/bin/ccx, which CMake finds and the calculix wrapper uses by default
+# (docs/solver-wrappers-calculix.md, "State reset").
 #
 # Idempotent: a second run finds the stamp file (source version + patch checksum) and returns
 # at once. The build takes about two minutes on two cores.
