@@ -38,8 +38,10 @@ fi
 
 binary_version=$(dpkg-query -W -f='${Version}' calculix-ccx)
 source_version=${binary_version%+b*}  # a binary-only rebuild comes from the same source
-wanted="$source_version $(cat "${patches[@]}" | sha256sum | cut -c1-16) ${COCOPP_CCX_OPTIMIZATION:--O3}"
-if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$wanted" ] && [ -x "$prefix/bin/ccx" ]; then
+hooks=solver_wrappers/calculix/coupled_ccx/cocopp_ccx_hooks.h
+wanted="$source_version $(cat "${patches[@]}" "$hooks" | sha256sum | cut -c1-16) ${COCOPP_CCX_OPTIMIZATION:--O3}"
+if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$wanted" ] && [ -x "$prefix/bin/ccx" ] &&
+  [ -f "$prefix/lib/libccx_cocopp.a" ]; then
   echo "install-calculix: ccx $source_version with cocopp's patches in $prefix/bin is ready"
   exit 0
 fi
@@ -66,15 +68,25 @@ version=$(basename "$(dirname "$src")")  # ccx_2.20
 # an install takes along, to this processor: COCOPP_CCX_OPTIMIZATION="-O3 -march=native".
 optimization=${COCOPP_CCX_OPTIMIZATION:--O3}
 echo "install-calculix: building $version with cocopp's patches, $optimization (log: $deps_dir/calculix-build.log)"
+# The hooks header of patch 05 is cocopp's (solver_wrappers/calculix/coupled_ccx).
+cflags="$optimization -w -I/usr/include/spooles -I$PWD/solver_wrappers/calculix/coupled_ccx -DARCH=\"Linux\" -DSPOOLES -DARPACK -DMATRIXSTORAGE -DUSE_MT=1"
 make -C "$src" -j "$(nproc)" \
-  CFLAGS="$optimization -w -I/usr/include/spooles -DARCH=\"Linux\" -DSPOOLES -DARPACK -DMATRIXSTORAGE -DUSE_MT=1" \
+  CFLAGS="$cflags" \
   FFLAGS="$optimization -w -fallow-argument-mismatch" >"$deps_dir/calculix-build.log" 2>&1 || {
   tail -20 "$deps_dir/calculix-build.log"
   echo "install-calculix: building ccx failed (log: $deps_dir/calculix-build.log)" >&2
   exit 1
 }
-mkdir -p "$prefix/bin"
+mkdir -p "$prefix/bin" "$prefix/lib"
 cp "$src/$version" "$prefix/bin/ccx"
+# The coupled ccx (cocopp-ccx, built by CMake) links ccx as a library: its objects, with main
+# renamed so that cocopp's main can run it in a thread of its own.
+(cd "$src" && eval "gcc $cflags -Dmain=cocopp_ccx_main -c $version.c -o cocopp_ccx_main.o" &&
+  cp "$version.a" libccx_cocopp.a && ar r libccx_cocopp.a cocopp_ccx_main.o) >>"$deps_dir/calculix-build.log" 2>&1 || {
+  echo "install-calculix: building ccx's library for cocopp-ccx failed (log: $deps_dir/calculix-build.log)" >&2
+  exit 1
+}
+cp "$src/libccx_cocopp.a" "$prefix/lib/"
 # `ccx -v` prints its version and exits with 201.
 version_text=$("$prefix/bin/ccx" -v 2>&1 || true)
 grep -q "cocopp: restart files keep the state variables and the axisymmetry flag" <<<"$version_text" || {

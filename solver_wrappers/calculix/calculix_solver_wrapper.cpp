@@ -58,6 +58,19 @@ std::string default_executable() {
   return "ccx";
 }
 
+/// cocopp-ccx (mode: persistent): next to the running cocopp (the build tree, or an install's
+/// bin when COCOPP_BIN_DIR points there), else in an install's libexec/cocopp.
+std::string default_coupled_executable() {
+  std::error_code error;
+  const std::filesystem::path bin = builtin_solver_directory();
+  if (bin.empty()) return "cocopp-ccx";
+  if (std::filesystem::is_regular_file(bin / "cocopp-ccx", error))
+    return (bin / "cocopp-ccx").string();
+  return (bin.parent_path() / std::filesystem::path(COCOPP_INSTALLED_CCX).parent_path() /
+          "cocopp-ccx")
+      .string();
+}
+
 using DeckElement = std::pair<const std::int64_t, calculix::Element>;
 
 /// The deck's first element (by number) whose type satisfies `is`, or null.
@@ -158,6 +171,29 @@ CalculixSolverWrapper::CalculixSolverWrapper(const Settings& settings, const Run
   state_reset_where_ =
       settings.has("state_reset") ? settings.where("state_reset") : settings.where();
   log_file_ = working_directory_ / settings.get<std::string>("log_file", name_ + ".log");
+  read_mode(settings);
+}
+
+// mode: persistent keeps one ccx for the run; what it cannot do is refused here, by key.
+void CalculixSolverWrapper::read_mode(const Settings& settings) {
+  persistent_ =
+      settings.get_choice("mode", "per_iteration", {"per_iteration", "persistent"}) == "persistent";
+  mode_where_ = settings.has("mode") ? settings.where("mode") : settings.where();
+  coupled_executable_ =
+      settings.get<std::string>("coupled_executable", default_coupled_executable());
+  if (!persistent_) return;
+  const auto refuse = [&](const char* key, const char* why) {
+    if (settings.has(key))
+      settings.fail(key, std::string(why) +
+                             " with mode: per_iteration only: remove it or use "
+                             "that mode");
+  };
+  refuse("state_reset", "ccx's state is reset from restart files or by replay");
+  refuse("initial_increment", "a cut-back increment is carried between ccx runs");
+  if (displacement_drive_)
+    settings.fail("interface_drive",
+                  "interface_drive: displacement works with mode: per_iteration only (its "
+                  "driven nodes change from one coupling iteration to the next)");
 }
 
 CalculixSolverWrapper::~CalculixSolverWrapper() = default;
@@ -169,6 +205,11 @@ void CalculixSolverWrapper::set_default_name(const std::string& name) {
 }
 
 std::string CalculixSolverWrapper::describe() const {
+  if (persistent_)
+    return fmt::format("{}: {} -i {} for {} (in {}; log {}; {} thread{}; persistent)", name_,
+                       coupled_executable_, calculix::PersistentCcx::kJob, input_file_,
+                       working_directory_.string(), log_file_.string(), threads_,
+                       threads_ == 1 ? "" : "s");
   return fmt::format("{}: {} -i {} for {} (in {}; log {}; {} thread{}; state reset: {}{})", name_,
                      executable_, kJob, input_file_, working_directory_.string(),
                      log_file_.string(), threads_, threads_ == 1 ? "" : "s", state_reset_key_,
@@ -183,6 +224,17 @@ void CalculixSolverWrapper::check() const {
   const auto deck = working_directory_ / input_file_;
   if (const auto why = path_problem(deck, PathKind::kRegularFile); !why.empty())
     throw CaseError(input_file_where_ + ": " + solver + "input deck " + deck.string() + " " + why);
+  if (persistent_) {
+    try {
+      find_executable(coupled_executable_, working_directory_);
+    } catch (const std::runtime_error& e) {
+      throw CaseError(mode_where_ + ": " + solver +
+                      "mode: persistent runs cocopp-ccx, which is not there (" + e.what() +
+                      "): build it (scripts/install-calculix.sh, then the cocopp build), give "
+                      "its path in 'coupled_executable', or use mode: per_iteration");
+    }
+    return;
+  }
   try {
     find_executable(executable_, working_directory_);
   } catch (const std::runtime_error& e) {
@@ -194,14 +246,18 @@ void CalculixSolverWrapper::check() const {
 
 void CalculixSolverWrapper::initialize() {
   check();
-  ccx_path_ = find_executable(executable_, working_directory_);
+  if (!persistent_) ccx_path_ = find_executable(executable_, working_directory_);
   read_deck();
-  choose_state_reset();
+  if (!persistent_) choose_state_reset();
   build_interfaces();
   // The model definition once; every first-step iteration includes it.
   std::ofstream model(file(kModelFile));
   write_lines(model, deck_->model_definition());
   if (!model.flush()) fail("cannot write " + file(kModelFile).string());
+  if (persistent_) {
+    start_persistent();
+    return;
+  }
   std::filesystem::remove(file(kConvergedRestart));
   if (run_.timestep_start > 0) restore(run_.timestep_start);
 }
@@ -211,6 +267,7 @@ void CalculixSolverWrapper::initialize() {
 // converged restart file, or (replay) the loads of every committed step, which stay in the
 // working directory anyway.
 void CalculixSolverWrapper::save_restart(int step) {
+  if (persistent_) return;  // a restart refuses persistent mode (start_persistent)
   const RowMatrix u = output_interface_.values(node_set_name_, "displacement");
   write_restart_file(file(restart_file_name(name_, step).string()), name_, step,
                      {{"displacement", Eigen::Map<const Eigen::VectorXd>(u.data(), u.size())}});
@@ -261,13 +318,13 @@ void CalculixSolverWrapper::read_deck() {
   try {
     deck_ = std::make_unique<calculix::InputDeck>(
         calculix::InputDeck::read(working_directory_ / input_file_, working_directory_));
-    if (deck_->procedure() == "DYNAMIC" &&
+    if (!persistent_ && deck_->procedure() == "DYNAMIC" &&
         std::abs(deck_->step_time_period() - run_.delta_t) > 1e-9 * run_.delta_t)
       throw calculix::DeckError(fmt::format(
           "{}: the *DYNAMIC step's time period is {}, the coupling time step delta_t is {}: "
           "they must be equal",
           deck_->step().front().where, deck_->step_time_period(), run_.delta_t));
-    check_dynamic_elements();
+    if (!persistent_) check_dynamic_elements();  // one long step: nothing restarts *DYNAMIC
     if (carry_initial_increment_ && !deck_->procedure_data_line())
       throw CaseError(fmt::format(
           "{}: initial_increment: previous_iteration, but the *{} card of {} has no data line "
@@ -361,10 +418,60 @@ void CalculixSolverWrapper::build_interfaces() {
                                 {faces, inputs}});
 }
 
-void CalculixSolverWrapper::initialize_step(int step, double /*time*/) {
+void CalculixSolverWrapper::initialize_step(int step, double time) {
   step_ = step;
   iteration_ = 0;
   carried_increment_.reset();  // a new step tries the deck's initial increment first
+  if (persistent_ccx_) persistent_ccx_->initialize_step(step, time);
+}
+
+void CalculixSolverWrapper::start_persistent() {
+  if (run_.timestep_start > 0)
+    throw CaseError(fmt::format(
+        "{}: solver '{}': mode: persistent cannot restart a run yet (cocopp-ccx keeps no "
+        "restart data): restart with mode: per_iteration, or run from the start",
+        mode_where_, name_));
+  if (const std::string why = calculix::PersistentCcx::unsupported(*deck_); !why.empty())
+    throw CaseError(
+        fmt::format("{}: solver '{}': mode: persistent cannot run {}: {}; use mode: "
+                    "per_iteration",
+                    mode_where_, name_, input_file_, why));
+  const bool pressure = std::find(input_variables_.begin(), input_variables_.end(), "pressure") !=
+                        input_variables_.end();
+  calculix::PersistentCcx::Options options{name_,
+                                           find_executable(coupled_executable_, working_directory_),
+                                           working_directory_,
+                                           log_file_,
+                                           threads_,
+                                           timeout_,
+                                           pressure};
+  persistent_ccx_ = std::make_unique<calculix::PersistentCcx>(options, *deck_, *loads_,
+                                                              interface_nodes_, kModelFile);
+  // The long step ends with the run; a run of unknown length gets a step long enough for any.
+  const int steps =
+      run_.number_of_timesteps > 0 ? run_.timestep_start + run_.number_of_timesteps : 1000;
+  persistent_ccx_->start(run_, steps * run_.delta_t);
+}
+
+RowMatrix CalculixSolverWrapper::solve_persistent(const Interface& input) {
+  Eigen::VectorXd pressure;
+  RowMatrix traction;
+  if (std::find(input_variables_.begin(), input_variables_.end(), "pressure") !=
+      input_variables_.end())
+    pressure = input.values(surface_name_, "pressure").col(0);
+  if (std::find(input_variables_.begin(), input_variables_.end(), "traction") !=
+      input_variables_.end())
+    traction = input.values(surface_name_, "traction");
+  if (!pressure.allFinite() || !traction.allFinite())
+    fail(fmt::format("solver '{}' at {}: the interface loads contain NaN or infinity", name_,
+                     position()));
+  return persistent_ccx_->solve(pressure, traction.size() > 0
+                                              ? loads_->nodal_forces(traction)
+                                              : std::map<std::int64_t, Eigen::Vector3d>{});
+}
+
+void CalculixSolverWrapper::finalize() {
+  if (persistent_ccx_) persistent_ccx_->finalize();
 }
 
 void CalculixSolverWrapper::start_reporting_convergence() {
@@ -383,6 +490,11 @@ const Interface& CalculixSolverWrapper::solve(const Interface& input) {
                     input.describe(), input_interface_.describe()));
   ++iteration_;
   const auto start = Clock::now();
+  if (persistent_ccx_) {
+    output_interface_.values(node_set_name_, "displacement") = solve_persistent(input);
+    last_timing_ = {seconds_since(start), 0.0};
+    return output_interface_;
+  }
   write_loads(input);
   write_iteration_deck();
   const std::filesystem::path results = file(std::string(kJob) + ".dat");
@@ -548,6 +660,10 @@ void CalculixSolverWrapper::finalize_step() {
     fail(fmt::format("solver '{}': time step {} is committed without a coupling iteration", name_,
                      step_));
   if (deck_->nonlinear_geometry()) move_faces_to_converged_state();
+  if (persistent_ccx_) {
+    persistent_ccx_->finalize_step();
+    return;
+  }
   // The last iteration is the converged one: its end state is the next step's start.
   if (state_reset_ == StateReset::kReplay) {
     const std::string loads = fmt::format("cocopp_loads_step{:05d}.inp", step_);
@@ -576,7 +692,9 @@ void CalculixSolverWrapper::move_faces_to_converged_state() {
 }
 
 void CalculixSolverWrapper::output_step() {
-  if (!save_results_) return;
+  // cocopp-ccx writes its results itself, into cocopp_persistent.frd and .dat, at every
+  // committed step the deck's output cards ask for.
+  if (!save_results_ || persistent_) return;
   const std::filesystem::path directory = file("results");
   std::filesystem::create_directories(directory);
   for (const char* extension : {".frd", ".dat"}) {

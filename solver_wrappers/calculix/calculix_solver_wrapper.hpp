@@ -21,6 +21,9 @@
 // history-dependent deck (*PLASTIC, *CREEP, *CYCLIC HARDENING, *USER MATERIAL, *DEPVAR) or an
 // axisymmetric one needs: then it replays.
 //
+// `mode: persistent` runs one cocopp-ccx process for the whole run instead, which resets in
+// memory (persistent_ccx.hpp).
+//
 // `interface_drive: displacement` drives the nodes the other solver covers by its wall
 // position and returns the position that balances the forces (displacement_drive.hpp).
 //
@@ -36,6 +39,7 @@
 #include "solver_wrappers/calculix/displacement_drive.hpp"
 #include "solver_wrappers/calculix/input_deck.hpp"
 #include "solver_wrappers/calculix/interface_loads.hpp"
+#include "solver_wrappers/calculix/persistent_ccx.hpp"
 #include "solver_wrappers/solver_wrapper.hpp"
 
 namespace cocopp {
@@ -75,13 +79,15 @@ class CalculixSolverWrapper : public SolverWrapper {
   void finalize_step() override;
   void output_step() override;
   void save_restart(int step) override;
-  void finalize() override {}
+  void finalize() override;
 
   const Timing& last_timing() const { return last_timing_; }
   const std::filesystem::path& working_directory() const { return working_directory_; }
   StateReset state_reset() const { return state_reset_; }
+  bool persistent() const { return persistent_; }
 
  private:
+  void read_mode(const Settings& settings);
   void read_deck();
   void choose_state_reset();
   void check_dynamic_elements() const;
@@ -90,6 +96,8 @@ class CalculixSolverWrapper : public SolverWrapper {
   void write_step(std::ofstream& out, const std::string& loads_file, bool print) const;
   void write_loads(const Interface& input) const;
   void run_ccx();
+  void start_persistent();
+  RowMatrix solve_persistent(const Interface& input);
   void move_faces_to_converged_state();
   /// A restarted run: the state save_restart(step) kept.
   void restore(int step);
@@ -121,6 +129,9 @@ class CalculixSolverWrapper : public SolverWrapper {
   double surface_stiffness_ = 0.0;
   std::string working_directory_where_, input_file_where_, executable_where_, state_reset_where_,
       initial_increment_where_;
+  bool persistent_ = false;  ///< mode: persistent
+  std::string coupled_executable_;
+  std::string mode_where_;
   RunSettings run_;
 
   // From the deck.
@@ -130,6 +141,7 @@ class CalculixSolverWrapper : public SolverWrapper {
   std::vector<std::int64_t> interface_nodes_;
   std::filesystem::path ccx_path_;
   StateReset state_reset_ = StateReset::kRestart;
+  std::unique_ptr<calculix::PersistentCcx> persistent_ccx_;
 
   // While running.
   int step_ = 0;

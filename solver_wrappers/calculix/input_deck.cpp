@@ -22,20 +22,6 @@ std::string trim(const std::string& text) {
   return text.substr(begin, end - begin + 1);
 }
 
-std::vector<std::string> split_commas(const std::string& text) {
-  std::vector<std::string> fields;
-  std::size_t start = 0;
-  for (;;) {
-    const auto comma = text.find(',', start);
-    fields.push_back(trim(text.substr(start, comma - start)));
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  // A trailing comma continues a list on the next line: it adds no field.
-  if (!fields.empty() && fields.back().empty()) fields.pop_back();
-  return fields;
-}
-
 bool is_keyword_line(const std::string& line) {
   return line.size() >= 1 && line[0] == '*' && (line.size() < 2 || line[1] != '*');
 }
@@ -117,6 +103,20 @@ bool is_integer(const std::string& field) {
 }
 
 }  // namespace
+
+std::vector<std::string> split_commas(const std::string& text) {
+  std::vector<std::string> fields;
+  std::size_t start = 0;
+  for (;;) {
+    const auto comma = text.find(',', start);
+    fields.push_back(trim(text.substr(start, comma - start)));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  // A trailing comma continues a list on the next line: it adds no field.
+  if (!fields.empty() && fields.back().empty()) fields.pop_back();
+  return fields;
+}
 
 std::string upper(std::string text) {
   for (char& c : text) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
@@ -365,6 +365,7 @@ void InputDeck::read_procedure(const Card& card) {
   procedure_ = card.keyword;
   step_time_period_ = 1.0;  // ccx's default
   initial_increment_ = step_time_period_;
+  procedure_line_ = step_.size() - card.data.size() - 1;  // the card and its data are in step_
   if (card.data.empty()) return;
   procedure_data_line_ = step_.size() - card.data.size();  // the card and its data are in step_
   const auto fields = split_commas(card.data[0].text);

@@ -73,6 +73,8 @@ class InputDeck {
   /// The step's procedure, e.g. "STATIC" or "DYNAMIC", and its time period (0 if not given).
   const std::string& procedure() const { return procedure_; }
   double step_time_period() const { return step_time_period_; }
+  /// Index in step() of the procedure card (*STATIC, *DYNAMIC, ...).
+  std::size_t procedure_line() const { return procedure_line_; }
   /// Index in step() of the procedure's first data line (initial increment, period, ...), if
   /// the deck gives one.
   std::optional<std::size_t> procedure_data_line() const { return procedure_data_line_; }
@@ -107,11 +109,15 @@ class InputDeck {
   std::set<std::string> keywords_;  ///< of the model definition
   std::string procedure_;
   double step_time_period_ = 0.0;
+  std::size_t procedure_line_ = 0;
   std::optional<std::size_t> procedure_data_line_;
   double initial_increment_ = 0.0;
   bool nonlinear_geometry_ = false;
   std::string file_;
 };
+
+/// The comma-separated fields of a deck line, trimmed (a trailing comma adds none).
+std::vector<std::string> split_commas(const std::string& text);
 
 /// Upper case, as ccx compares names and keywords.
 std::string upper(std::string text);

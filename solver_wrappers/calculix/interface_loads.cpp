@@ -47,15 +47,18 @@ std::map<std::int64_t, Eigen::Vector3d> InterfaceLoads::nodal_forces(
   return forces;
 }
 
+Eigen::Vector3d InterfaceLoads::in_node_system(std::int64_t node,
+                                               const Eigen::Vector3d& global) const {
+  const NodalTransform* transform = deck_.transform(node);
+  return transform ? Eigen::Vector3d(transform->axes_at(deck_.node(node)) * global) : global;
+}
+
 void InterfaceLoads::write_nodal_forces(std::ostream& out,
                                         const std::map<std::int64_t, Eigen::Vector3d>& forces,
                                         const std::function<bool(std::int64_t, int)>& skip) const {
   out << "*CLOAD\n";
   for (const auto& [node, global_force] : forces) {
-    const NodalTransform* transform = deck_.transform(node);
-    const Eigen::Vector3d force =
-        transform ? Eigen::Vector3d(transform->axes_at(deck_.node(node)) * global_force)
-                  : global_force;
+    const Eigen::Vector3d force = in_node_system(node, global_force);
     for (int dof = 0; dof < (plane_ ? 2 : 3); ++dof)
       if (!skip || !skip(node, dof + 1))
         out << fmt::format("{}, {}, {}\n", node, dof + 1, ccx_number(force[dof]));

@@ -42,6 +42,12 @@ class InterfaceLoads {
   std::map<std::int64_t, Eigen::Vector3d> nodal_forces(
       const RowMatrix& traction, const Eigen::VectorXd& pressure = Eigen::VectorXd()) const;
 
+  /// A force (global x, y, z) in the node's *TRANSFORM system, as ccx takes its *CLOAD there
+  /// (unchanged for a node without one).
+  Eigen::Vector3d in_node_system(std::int64_t node, const Eigen::Vector3d& global) const;
+  /// Whether the faces are plane elements' edges: forces in x and y only.
+  bool plane() const { return plane_; }
+
   /// *CLOAD cards of nodal forces (global), each in its node's *TRANSFORM system if it has
   /// one; `skip(node, dof)` leaves out a direction (1-based dof).
   void write_nodal_forces(std::ostream& out, const std::map<std::int64_t, Eigen::Vector3d>& forces,

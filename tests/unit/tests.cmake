@@ -35,6 +35,10 @@ if(COCOPP_HAVE_CALCULIX)
     target_compile_definitions(${COCOPP_LAST_TEST} PRIVATE COCOPP_HAVE_PATCHED_CCX=1
                                COCOPP_PATCHED_CCX="${COCOPP_CALCULIX_DIR}/bin/ccx")
   endif()
+  if(COCOPP_HAVE_COUPLED_CCX)  # mode: persistent (cocopp-ccx, found next to the tests' cocopp)
+    target_compile_definitions(${COCOPP_LAST_TEST} PRIVATE COCOPP_HAVE_COUPLED_CCX=1)
+    add_dependencies(${COCOPP_LAST_TEST} cocopp-ccx)
+  endif()
 endif()
 cocopp_unit_test(solver_wrappers/tube
   SOURCES test_banded_solver.cpp test_tube_input.cpp test_tube_flow.cpp test_tube_structure.cpp

@@ -24,8 +24,10 @@ namespace cocopp::testing {
 
 class CalculixCase {
  public:
-  explicit CalculixCase(double delta_t = 1.0) {
+  /// `number_of_timesteps`: the run's, which mode: persistent makes its ccx step as long as.
+  explicit CalculixCase(double delta_t = 1.0, int number_of_timesteps = 100) {
     run_.delta_t = delta_t;
+    run_.number_of_timesteps = number_of_timesteps;
     run_.case_directory = directory_.path();
     std::filesystem::create_directory(directory_ / "wall");
   }

@@ -385,5 +385,33 @@ TEST(PatchedCcx, PlasticNlgeomStiffnessIsDebiansToRoundOff) {
 }
 #endif
 
+#ifdef COCOPP_HAVE_COUPLED_CCX
+// mode: persistent refuses, by key, what only the per-iteration mode does.
+TEST(CoupledCcx, RefusesWhatOnlyPerIterationModeDoes) {
+  SectorCylinder cylinder;
+  for (const std::string keys : {"state_reset: replay\n", "initial_increment: previous_iteration\n",
+                                 "interface_drive: displacement\nsurface_stiffness: 1e15\n"}) {
+    CalculixCase test;
+    const std::string message = error_message<CaseError>(
+        [&] { test.create(cylinder.deck(), "mode: persistent\n" + keys); });
+    EXPECT_CONTAINS(message, "case.yaml:");
+    EXPECT_CONTAINS(message, keys.substr(0, keys.find(':')));
+    EXPECT_CONTAINS(message, "mode: per_iteration");
+  }
+}
+
+// A deck error that ccx finds stops the start, in ccx's own words.
+TEST(CoupledCcx, DeckErrorQuotesCcx) {
+  CalculixCase test;
+  SectorCylinder cylinder;
+  cylinder.extra_step_cards = "*BOUNDARY\nNOSUCHSET, 1, 1\n";
+  test.create(cylinder.deck(), "mode: persistent\n");
+  const std::string message = error_message<SolverError>([&] { test.wrapper().initialize(); });
+  EXPECT_CONTAINS(message, "solver 'wall'");
+  EXPECT_CONTAINS(message, "*ERROR");
+  EXPECT_CONTAINS(message, "NOSUCHSET");
+}
+#endif
+
 }  // namespace
 }  // namespace cocopp

@@ -36,23 +36,32 @@ double relative_difference(const RowMatrix& a, const RowMatrix& b) {
   return (a - b).cwiseAbs().maxCoeff() / std::max(a.cwiseAbs().maxCoeff(), 1e-300);
 }
 
-class Repeatability : public ::testing::TestWithParam<bool> {};
+/// The wrapper's keys for a way of resetting ccx's state: a state_reset value of the default
+/// mode, or "persistent" (mode: persistent, cocopp-ccx's in-memory reset).
+std::string reset_keys(const std::string& reset) {
+  return reset == "persistent" ? "mode: persistent\n" : "state_reset: " + reset + "\n";
+}
+
+/// Plastic at 2p, and how the state is reset.
+class Repeatability : public ::testing::TestWithParam<std::tuple<bool, std::string>> {};
 
 // Within one time step: p, then 2p, then p again gives the first answer again, also when 2p
 // makes the material flow; and so does the next time step, which starts from the committed p.
 TEST_P(Repeatability, LoadPThen2PThenPGivesTheFirstAnswer) {
-  const bool plastic_at_2p = GetParam();
+  const auto& [plastic_at_2p, reset] = GetParam();
   CalculixCase test;
   SectorCylinder cylinder;
   cylinder.yield_stress = kYield;
-  test.create(cylinder.deck());
+  test.create(cylinder.deck(), reset_keys(reset));
   test.wrapper().initialize();
   const double p = (plastic_at_2p ? 0.75 : 0.4) * cylinder.yield_onset_pressure();
   test.wrapper().initialize_step(1, 1.0);
+  // The .dat file's 7 digits, or, reset in memory, round-off.
+  const double precision = reset == "persistent" ? 1e-13 : kDatPrecision;
   const RowMatrix first = test.solve(p);
   const RowMatrix doubled = test.solve(2 * p);
   const RowMatrix again = test.solve(p);
-  EXPECT_LE(relative_difference(again, first), kDatPrecision);
+  EXPECT_LE(relative_difference(again, first), precision);
   // 2p flows plastically (the response is no longer proportional) exactly when it should.
   const double nonlinearity = relative_difference(doubled, 2 * first);
   if (plastic_at_2p) {
@@ -63,11 +72,23 @@ TEST_P(Repeatability, LoadPThen2PThenPGivesTheFirstAnswer) {
   test.wrapper().finalize_step();
   test.wrapper().initialize_step(2, 2.0);
   test.solve(2 * p);
-  EXPECT_LE(relative_difference(test.solve(p), first), kDatPrecision);
+  EXPECT_LE(relative_difference(test.solve(p), first), precision);
 }
 
-INSTANTIATE_TEST_SUITE_P(CalculixCcx, Repeatability, ::testing::Values(false, true),
-                         [](const auto& info) { return info.param ? "Plastic" : "Elastic"; });
+std::string repeatability_name(
+    const ::testing::TestParamInfo<std::tuple<bool, std::string>>& info) {
+  return std::string(std::get<0>(info.param) ? "Plastic" : "Elastic") +
+         (std::get<1>(info.param) == "persistent" ? "Persistent" : "");
+}
+
+INSTANTIATE_TEST_SUITE_P(CalculixCcx, Repeatability,
+                         ::testing::Combine(::testing::Bool(), ::testing::Values("auto")),
+                         repeatability_name);
+#ifdef COCOPP_HAVE_COUPLED_CCX
+INSTANTIATE_TEST_SUITE_P(CoupledCcx, Repeatability,
+                         ::testing::Combine(::testing::Bool(), ::testing::Values("persistent")),
+                         repeatability_name);
+#endif
 
 /// Displacements of INNERN at the end of each step of one continuous ccx run with these
 /// pressures, one step each.
@@ -110,7 +131,7 @@ std::vector<RowMatrix> continuous_run(const SectorCylinder& cylinder,
 
 struct ResetCase {
   std::string name;
-  std::string state_reset;
+  std::string reset;  ///< a state_reset value, or "persistent"
   bool plastic;
   bool nlgeom = true;
   std::string element_type = "C3D20R";  ///< CAX8: the axisymmetric model
@@ -135,7 +156,7 @@ TEST_P(ResetEqualsContinuousRun, EveryStepEndsWhereTheContinuousRunDoes) {
   const double scale = GetParam().plastic ? p_y : 2 * kYield;  // elastic: any load
   const std::vector<double> pressures = {0.6 * scale, 1.4 * scale, 0.3 * scale};
   const double far_off = 1.7 * scale;
-  test.create(cylinder.deck(), "state_reset: " + GetParam().state_reset + "\n");
+  test.create(cylinder.deck(), reset_keys(GetParam().reset));
   test.wrapper().initialize();
   std::vector<RowMatrix> coupled;
   for (std::size_t n = 0; n < pressures.size(); ++n) {
@@ -147,8 +168,14 @@ TEST_P(ResetEqualsContinuousRun, EveryStepEndsWhereTheContinuousRunDoes) {
   const auto continuous =
       continuous_run(cylinder, pressures, test.path("continuous"), test.nodes().ids);
   ASSERT_EQ(continuous.size(), pressures.size());
+  // ccx prints a CAX node's displacement from its 3D expansion (a wedge of +-1 degree), not
+  // the value it solves for, which cocopp-ccx returns: the mid-side nodes at cos(1 degree) of
+  // it, the corner nodes from a weighted mean across the wedge, 1.0e-4 and 1.5e-4 off (the
+  // returned values are the closer to Lame's: CoupledCcx.AxisymmetricCylinderMatchesLame).
+  const double tolerance =
+      cylinder.axisymmetric() && GetParam().reset == "persistent" ? 2e-4 : kDatPrecision;
   for (std::size_t n = 0; n < pressures.size(); ++n)
-    EXPECT_LE(relative_difference(coupled[n], continuous[n]), kDatPrecision) << "step " << n + 1;
+    EXPECT_LE(relative_difference(coupled[n], continuous[n]), tolerance) << "step " << n + 1;
 }
 
 INSTANTIATE_TEST_SUITE_P(CalculixCcx, ResetEqualsContinuousRun,
@@ -157,6 +184,19 @@ INSTANTIATE_TEST_SUITE_P(CalculixCcx, ResetEqualsContinuousRun,
                                            ResetCase{"AxisymmetricReplayPlasticNlgeom", "replay",
                                                      true, true, "CAX8"}),
                          [](const auto& info) { return info.param.name; });
+
+#ifdef COCOPP_HAVE_COUPLED_CCX
+// cocopp-ccx (mode: persistent): one ccx step for the run, each coupling iteration reset in
+// memory, every step ends where the continuous run of separate steps does.
+INSTANTIATE_TEST_SUITE_P(
+    CoupledCcx, ResetEqualsContinuousRun,
+    ::testing::Values(ResetCase{"PersistentElasticNlgeom", "persistent", false},
+                      ResetCase{"PersistentPlasticNlgeom", "persistent", true},
+                      ResetCase{"PersistentPlasticSmallStrain", "persistent", true, false},
+                      ResetCase{"AxisymmetricPersistentPlasticNlgeom", "persistent", true, true,
+                                "CAX8"}),
+    [](const auto& info) { return info.param.name; });
+#endif
 
 #ifdef COCOPP_HAVE_PATCHED_CCX
 // ccx with cocopp's restart patches (scripts/install-calculix.sh, the default executable) keeps
@@ -242,6 +282,29 @@ TEST(PatchedCcx, AxisymmetricCylinderMatchesLameAcrossRestarts) {
 }
 #endif
 
+#ifdef COCOPP_HAVE_COUPLED_CCX
+// The same in persistent mode, closer to Lamé: cocopp-ccx returns the radial displacement ccx
+// solves for at the CAX node (4.2e-6 off Lamé), where the .dat file prints it from the 3D
+// expansion at cos(1 degree) of that (the 1.6e-4 above).
+TEST(CoupledCcx, AxisymmetricCylinderMatchesLame) {
+  CalculixCase test;
+  SectorCylinder cylinder;
+  cylinder.element_type = "CAX8";
+  test.start(cylinder.deck(), "mode: persistent\n");
+  const double p = 100e6;
+  for (int step = 1; step <= 2; ++step) {
+    if (step > 1) test.wrapper().initialize_step(step, step);
+    const RowMatrix u = test.solve(step * p);
+    const double expected = cylinder.lame_radial_displacement(step * p, cylinder.ri);
+    for (Eigen::Index i = 0; i < u.rows(); ++i) {
+      EXPECT_NEAR(u(i, 0), expected, 2e-5 * expected) << "step " << step;
+      EXPECT_NEAR(u(i, 1), 0.0, 1e-6 * expected);
+    }
+    test.wrapper().finalize_step();
+  }
+}
+#endif
+
 /// Radial bore displacement at the end of each of `pressures.size()` increments of delta_t of
 /// one continuous dynamic ccx run: one step, the pressure piecewise linear in time through
 /// (0, 0), (delta_t, pressures[0]), (2 delta_t, pressures[1]), ...
@@ -259,7 +322,7 @@ std::vector<double> continuous_dynamic_run(SectorCylinder cylinder,
   step.precision(13);
   step << delta_t << ", " << delta_t * static_cast<double>(pressures.size()) << ", " << delta_t
        << ", " << delta_t;
-  cylinder.step_options = "";
+  cylinder.step_options = ", INC=" + std::to_string(pressures.size());  // ccx's default: 100
   cylinder.increments = step.str();
   cylinder.extra_step_cards =
       "*DLOAD, AMPLITUDE=LOADS\nINNER, P, 1.\n*NODE PRINT, NSET=INNERN, GLOBAL=YES\nU\n";
@@ -279,14 +342,22 @@ std::vector<double> continuous_dynamic_run(SectorCylinder cylinder,
   return radial;
 }
 
-// A dynamic structure coupled over 40 time steps (one ccx step each, restarted from the last
-// converged step after a far-off iteration) follows one continuous ccx run of 40 increments
-// under the same load history, within 2 % of the peak (measured 0.97 %). The two differ only
-// where ccx starts a step: it solves for the acceleration there with a little stiffness added
-// to the mass (nonlingeo.c), which feeds an undamped sawtooth (ALPHA=0; ALPHA=-0.05 is 6.8 %
-// off, since the step start ignores alpha). With C3D20R elements the same series grows without
-// bound (the wrapper refuses them in dynamic decks, test_calculix_deck.cpp).
-TEST(CalculixCcx, DynamicTimeStepsFollowOneContinuousRun) {
+/// The bore node's radial displacement and the continuous run's, over 40 coupled dynamic time
+/// steps (each after a far-off iteration) of the breathing cylinder under a varying pressure.
+struct DynamicSeries {
+  std::vector<double> coupled, continuous;
+  /// The largest difference over the largest continuous value.
+  double difference_over_peak() const {
+    double peak = 0.0, difference = 0.0;
+    for (std::size_t n = 0; n < continuous.size(); ++n) {
+      peak = std::max(peak, std::abs(continuous[n]));
+      difference = std::max(difference, std::abs(coupled[n] - continuous[n]));
+    }
+    return difference / peak;
+  }
+};
+
+DynamicSeries dynamic_series(const std::string& keys) {
   SectorCylinder cylinder;
   cylinder.radial = 4;
   cylinder.element_type = "C3D20";
@@ -299,29 +370,91 @@ TEST(CalculixCcx, DynamicTimeStepsFollowOneContinuousRun) {
   for (int k = 1; k <= 40; ++k)
     pressures.push_back(1e8 * (0.5 + std::sin(0.4 * k) + 0.3 * std::cos(1.3 * k)));
   CalculixCase test(delta_t);
-  test.create(cylinder.deck());
+  test.create(cylinder.deck(), keys);
   test.wrapper().initialize();
   const std::int64_t node = test.nodes().ids.front();
-  std::vector<double> coupled;
+  DynamicSeries series;
   for (std::size_t n = 0; n < pressures.size(); ++n) {
     test.wrapper().initialize_step(static_cast<int>(n + 1), (n + 1.0) * delta_t);
     test.solve(-2 * pressures[n]);
-    coupled.push_back(test.radial(test.solve(pressures[n]))(0));
+    series.coupled.push_back(test.radial(test.solve(pressures[n]))(0));
     test.wrapper().finalize_step();
   }
+  test.wrapper().finalize();
+  const Eigen::Vector3d at = test.nodes().coordinates.row(0).transpose();
+  series.continuous =
+      continuous_dynamic_run(cylinder, pressures, delta_t, test.path("continuous"), node, at);
+  EXPECT_EQ(series.continuous.size(), pressures.size());
+  return series;
+}
+
+// A dynamic structure coupled over 40 time steps (one ccx step each, restarted from the last
+// converged step after a far-off iteration) follows one continuous ccx run of 40 increments
+// under the same load history, within 2 % of the peak (measured 0.97 %). The two differ only
+// where ccx starts a step: it solves for the acceleration there with a little stiffness added
+// to the mass (nonlingeo.c), which feeds an undamped sawtooth (ALPHA=0; ALPHA=-0.05 is 6.8 %
+// off, since the step start ignores alpha). With C3D20R elements the same series grows without
+// bound (the wrapper refuses them in dynamic decks, test_calculix_deck.cpp).
+TEST(CalculixCcx, DynamicTimeStepsFollowOneContinuousRun) {
+  const DynamicSeries series = dynamic_series("");
+  ASSERT_EQ(series.continuous.size(), series.coupled.size());
+  EXPECT_LE(series.difference_over_peak(), 2e-2);
+  RecordProperty("max_difference_over_peak", std::to_string(series.difference_over_peak()));
+  std::printf("largest difference: %.2e of the peak\n", series.difference_over_peak());
+}
+
+#ifdef COCOPP_HAVE_COUPLED_CCX
+// Persistent, the 40 time steps are increments of one ccx step: the same as the continuous
+// run to the .dat file's digits.
+TEST(CoupledCcx, DynamicTimeStepsAreOneContinuousRun) {
+  const DynamicSeries series = dynamic_series("mode: persistent\n");
+  ASSERT_EQ(series.continuous.size(), series.coupled.size());
+  EXPECT_LE(series.difference_over_peak(), 1e-5);
+  std::printf("largest difference: %.2e of the peak\n", series.difference_over_peak());
+}
+
+// 2000 dynamic time steps under a constant pressure, C3D20R elements (whose one-step-per-time-
+// step series per_iteration mode refuses, as it grows without bound): bounded by twice the
+// static answer (an undamped step response), and equal to one uninterrupted ccx run of the same
+// 2000 increments.
+TEST(CoupledCcx, TwoThousandDynamicStepsStayBoundedAndEqualOneRun) {
+  SectorCylinder cylinder;
+  cylinder.radial = 4;
+  cylinder.element_type = "C3D20R";
+  cylinder.density = 7850.0;
+  cylinder.step_options = ", AMPLITUDE=RAMP";
+  cylinder.procedure = "*DYNAMIC, DIRECT, ALPHA=0";
+  const double delta_t = 2e-6;
+  cylinder.increments = "2e-06, 2e-06";
+  const int steps = 2000;
+  const double p = 1e8;
+  CalculixCase test(delta_t, steps);
+  test.create(cylinder.deck(), "mode: persistent\n");
+  test.wrapper().initialize();
+  std::vector<double> coupled;
+  for (int n = 1; n <= steps; ++n) {
+    test.wrapper().initialize_step(n, n * delta_t);
+    coupled.push_back(test.radial(test.solve(p))(0));
+    test.wrapper().finalize_step();
+  }
+  test.wrapper().finalize();
+  const double static_answer = cylinder.lame_radial_displacement(p, cylinder.ri);
+  const double largest = *std::max_element(coupled.begin(), coupled.end());
+  EXPECT_LE(largest, 2.05 * static_answer);
+  EXPECT_GE(largest, 1.5 * static_answer);  // it does oscillate
   const Eigen::Vector3d at = test.nodes().coordinates.row(0).transpose();
   const auto continuous =
-      continuous_dynamic_run(cylinder, pressures, delta_t, test.path("continuous"), node, at);
-  ASSERT_EQ(continuous.size(), pressures.size());
-  double peak = 0.0, difference = 0.0;
-  for (std::size_t n = 0; n < pressures.size(); ++n) {
-    peak = std::max(peak, std::abs(continuous[n]));
+      continuous_dynamic_run(cylinder, std::vector<double>(steps, p), delta_t,
+                             test.path("continuous"), test.nodes().ids.front(), at);
+  ASSERT_EQ(continuous.size(), coupled.size());
+  double difference = 0.0;
+  for (int n = 0; n < steps; ++n)
     difference = std::max(difference, std::abs(coupled[n] - continuous[n]));
-  }
-  EXPECT_LE(difference, 2e-2 * peak) << "peak " << peak;
-  RecordProperty("max_difference_over_peak", std::to_string(difference / peak));
-  std::printf("largest difference: %.2e of the peak %.3e m\n", difference / peak, peak);
+  EXPECT_LE(difference, 1e-5 * largest);
+  std::printf("largest %.3f of the static answer; largest difference %.2e of it\n",
+              largest / static_answer, difference / largest);
 }
+#endif
 
 // The totals of the loads the wrapper writes: a uniform axial shear traction and a uniform
 // pressure on the bore of a 1 degree sector give reactions equal to traction x area and
