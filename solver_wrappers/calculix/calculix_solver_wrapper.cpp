@@ -175,12 +175,49 @@ CalculixSolverWrapper::CalculixSolverWrapper(const Settings& settings, const Run
 }
 
 // mode: persistent keeps one ccx for the run; what it cannot do is refused here, by key.
+bool CalculixSolverWrapper::has_coupled_executable() const {
+  try {
+    find_executable(coupled_executable_, working_directory_);
+    return true;
+  } catch (const std::runtime_error&) {
+    return false;
+  }
+}
+
+// mode: auto runs per iteration a deck persistent mode cannot run, and the restart of a run that
+// ran per iteration (its restart data has no inputs to replay).
+void CalculixSolverWrapper::choose_auto_mode() {
+  if (!auto_mode_ || !persistent_) return;
+  if (!calculix::PersistentCcx::unsupported(*deck_).empty()) {
+    persistent_ = false;
+    return;
+  }
+  if (run_.timestep_start == 0) return;
+  try {
+    const int step = run_.timestep_start;
+    persistent_ = read_restart_file(file(restart_file_name(name_, step).string()), name_, step)
+                      .count("inputs") != 0;
+  } catch (const std::runtime_error&) {
+    // Missing or damaged: the restart says so in either mode.
+  }
+}
+
 void CalculixSolverWrapper::read_mode(const Settings& settings) {
-  persistent_ =
-      settings.get_choice("mode", "per_iteration", {"per_iteration", "persistent"}) == "persistent";
+  const std::string mode =
+      settings.get_choice("mode", "auto", {"auto", "per_iteration", "persistent"});
   mode_where_ = settings.has("mode") ? settings.where("mode") : settings.where();
   coupled_executable_ =
       settings.get<std::string>("coupled_executable", default_coupled_executable());
+  if (mode == "auto") {
+    // Persistent where cocopp-ccx is built and no key asks for a ccx run per iteration (a
+    // ccx executable of the user's among them); the
+    // deck and a restart's data may still say otherwise (choose_auto_mode).
+    auto_mode_ = true;
+    persistent_ = !settings.has("state_reset") && !settings.has("initial_increment") &&
+                  !settings.has("executable") && !displacement_drive_ && has_coupled_executable();
+    return;
+  }
+  persistent_ = mode == "persistent";
   if (!persistent_) return;
   const auto refuse = [&](const char* key, const char* why) {
     if (settings.has(key))
@@ -233,7 +270,7 @@ void CalculixSolverWrapper::check() const {
                       "): build it (scripts/install-calculix.sh, then the cocopp build), give "
                       "its path in 'coupled_executable', or use mode: per_iteration");
     }
-    return;
+    if (!auto_mode_) return;  // auto may still run per iteration: ccx too
   }
   try {
     find_executable(executable_, working_directory_);
@@ -246,8 +283,9 @@ void CalculixSolverWrapper::check() const {
 
 void CalculixSolverWrapper::initialize() {
   check();
-  if (!persistent_) ccx_path_ = find_executable(executable_, working_directory_);
   read_deck();
+  choose_auto_mode();
+  if (!persistent_) ccx_path_ = find_executable(executable_, working_directory_);
   if (!persistent_) choose_state_reset();
   build_interfaces();
   // The model definition once; every first-step iteration includes it.
@@ -267,8 +305,23 @@ void CalculixSolverWrapper::initialize() {
 // converged restart file, or (replay) the loads of every committed step, which stay in the
 // working directory anyway.
 void CalculixSolverWrapper::save_restart(int step) {
-  if (persistent_) return;  // a restart refuses persistent mode (start_persistent)
   const RowMatrix u = output_interface_.values(node_set_name_, "displacement");
+  if (persistent_) {
+    // Persistent, a restart replays the committed steps (replay_committed_steps): their times
+    // and inputs, besides the displacement that checks the replay.
+    Eigen::VectorXd loads(static_cast<Eigen::Index>(committed_inputs_.size()) *
+                          input_interface_.size());
+    for (std::size_t k = 0; k < committed_inputs_.size(); ++k)
+      loads.segment(static_cast<Eigen::Index>(k) * input_interface_.size(),
+                    input_interface_.size()) = committed_inputs_[k];
+    write_restart_file(file(restart_file_name(name_, step).string()), name_, step,
+                       {{"displacement", Eigen::Map<const Eigen::VectorXd>(u.data(), u.size())},
+                        {"times", Eigen::Map<const Eigen::VectorXd>(
+                                      committed_times_.data(),
+                                      static_cast<Eigen::Index>(committed_times_.size()))},
+                        {"inputs", loads}});
+    return;
+  }
   write_restart_file(file(restart_file_name(name_, step).string()), name_, step,
                      {{"displacement", Eigen::Map<const Eigen::VectorXd>(u.data(), u.size())}});
   if (state_reset_ == StateReset::kRestart && has_converged_restart_)
@@ -423,14 +476,10 @@ void CalculixSolverWrapper::initialize_step(int step, double time) {
   iteration_ = 0;
   carried_increment_.reset();  // a new step tries the deck's initial increment first
   if (persistent_ccx_) persistent_ccx_->initialize_step(step, time);
+  step_time_ = time;
 }
 
 void CalculixSolverWrapper::start_persistent() {
-  if (run_.timestep_start > 0)
-    throw CaseError(fmt::format(
-        "{}: solver '{}': mode: persistent cannot restart a run yet (cocopp-ccx keeps no "
-        "restart data): restart with mode: per_iteration, or run from the start",
-        mode_where_, name_));
   if (const std::string why = calculix::PersistentCcx::unsupported(*deck_); !why.empty())
     throw CaseError(
         fmt::format("{}: solver '{}': mode: persistent cannot run {}: {}; use mode: "
@@ -447,10 +496,57 @@ void CalculixSolverWrapper::start_persistent() {
                                            pressure};
   persistent_ccx_ = std::make_unique<calculix::PersistentCcx>(options, *deck_, *loads_,
                                                               interface_nodes_, kModelFile);
-  // The long step ends with the run; a run of unknown length gets a step long enough for any.
+  persistent_ccx_->start(run_, persistent_end_time());
+  if (run_.timestep_start > 0) replay_committed_steps(run_.timestep_start);
+}
+
+// A restarted persistent run solves the committed steps again with their converged inputs: one
+// coupling iteration each, so the same increments and the same state as the run had.
+void CalculixSolverWrapper::replay_committed_steps(int step) {
+  const std::filesystem::path data_file = file(restart_file_name(name_, step).string());
+  Eigen::VectorXd times, inputs, displacement;
+  try {
+    const RestartData data = read_restart_file(data_file, name_, step);
+    if (data.count("inputs") == 0)
+      throw std::runtime_error(
+          "it has no committed inputs (was the run per_iteration? restart "
+          "it with mode: per_iteration)");
+    times = restart_array(data, "times", step, data_file);
+    inputs = restart_array(data, "inputs", step * input_interface_.size(), data_file);
+    displacement =
+        restart_array(data, "displacement",
+                      output_interface_.values(node_set_name_, "displacement").size(), data_file);
+  } catch (const std::runtime_error& e) {
+    fail(fmt::format("solver '{}' cannot restart after time step {}: {}", name_, step, e.what()));
+  }
+  std::vector<double> step_times(times.data(), times.data() + times.size());
+  std::vector<Eigen::VectorXd> step_inputs;
+  for (int k = 0; k < step; ++k)
+    step_inputs.push_back(inputs.segment(k * input_interface_.size(), input_interface_.size()));
+  replay(step_times, step_inputs);
+  const auto u = output_interface_.values(node_set_name_, "displacement");
+  const double scale = std::max(displacement.cwiseAbs().maxCoeff(), 1e-300);
+  const double off =
+      (Eigen::Map<const Eigen::VectorXd>(u.data(), u.size()) - displacement).cwiseAbs().maxCoeff();
+  if (off > 1e-9 * scale)
+    fail(
+        fmt::format("solver '{}': replaying time steps 1 to {} for the restart ends {:.2e} "
+                    "(relative) away from the displacement the run saved in {}: the deck or "
+                    "the ccx changed since",
+                    name_, step, off / scale, data_file.string()));
+}
+
+// The long step ends with the run; a run of unknown length gets a step of 1000 time steps.
+double CalculixSolverWrapper::persistent_end_time() const {
   const int steps =
       run_.number_of_timesteps > 0 ? run_.timestep_start + run_.number_of_timesteps : 1000;
-  persistent_ccx_->start(run_, steps * run_.delta_t);
+  return steps * run_.delta_t;
+}
+
+RunSettings CalculixSolverWrapper::run_from_start() const {
+  RunSettings run = run_;
+  run.timestep_start = 0;
+  return run;
 }
 
 RowMatrix CalculixSolverWrapper::solve_persistent(const Interface& input) {
@@ -468,6 +564,35 @@ RowMatrix CalculixSolverWrapper::solve_persistent(const Interface& input) {
   return persistent_ccx_->solve(pressure, traction.size() > 0
                                               ? loads_->nodal_forces(traction)
                                               : std::map<std::int64_t, Eigen::Vector3d>{});
+}
+
+// The committed steps again, one coupling iteration each with its converged input: the same
+// increments, so the same state.
+void CalculixSolverWrapper::replay(const std::vector<double>& times,
+                                   const std::vector<Eigen::VectorXd>& inputs) {
+  committed_times_.clear();
+  committed_inputs_.clear();
+  Interface input = input_interface_;
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    initialize_step(static_cast<int>(k + 1), times[k]);
+    input.set_data(inputs[k]);
+    solve(input);
+    finalize_step();
+  }
+}
+
+void CalculixSolverWrapper::restart_persistent() {
+  const int step = step_;
+  const double time = step_time_;
+  const int iteration = iteration_;
+  const auto times = committed_times_;
+  const auto inputs = committed_inputs_;
+  persistent_ccx_->finalize();
+  loads_->move_faces({});  // the deck's geometry: the replay moves the faces again
+  persistent_ccx_->start(run_from_start(), persistent_end_time());
+  replay(times, inputs);
+  initialize_step(step, time);  // the step that did not converge, ready for another input
+  iteration_ = iteration;
 }
 
 void CalculixSolverWrapper::finalize() {
@@ -491,7 +616,18 @@ const Interface& CalculixSolverWrapper::solve(const Interface& input) {
   ++iteration_;
   const auto start = Clock::now();
   if (persistent_ccx_) {
-    output_interface_.values(node_set_name_, "displacement") = solve_persistent(input);
+    last_input_ = input.data();
+    try {
+      output_interface_.values(node_set_name_, "displacement") = solve_persistent(input);
+    } catch (const SolverError& e) {
+      // ccx ends when it gives up a step: a new cocopp-ccx takes the committed steps again,
+      // so that the coupler may retry with other loads, as with a ccx run per iteration.
+      const std::string tail = read_last_lines(log_file_, 20);
+      if (!calculix::gave_up(tail)) throw;
+      restart_persistent();
+      throw not_converged("cocopp-ccx exited; restarted with the committed steps",
+                          file(std::string(calculix::PersistentCcx::kJob) + ".inp").string(), tail);
+    }
     last_timing_ = {seconds_since(start), 0.0};
     return output_interface_;
   }
@@ -625,17 +761,7 @@ void CalculixSolverWrapper::run_ccx() {
     case Status::kNotConverged:
       // The step starts from the converged restart (or the replayed steps) again at the next
       // solve, so the coupled solver may retry with other loads.
-      throw SolverRejectedInput(
-          name_,
-          fmt::format(
-              "solver '{}': ccx did not converge at {} ({}: the increment size fell below the "
-              "minimum, it was cut back too often or the step needed more increments than "
-              "*STEP, INC= allows); what to change: a smaller time step "
-              "(settings.delta_t), a smaller minimum "
-              "increment on the deck's *STATIC or *DYNAMIC line, or loads the structure can carry "
-              "(a coupled load far beyond its limit load diverges); deck {}, last lines of {}:\n{}",
-              name_, position(), result.exit_description, deck, log_file_.string(),
-              result.details));
+      throw not_converged(result.exit_description, deck, result.details);
     case Status::kDeckError:
       fail(fmt::format(
           "solver '{}': ccx rejected the input deck at {} ({}); deck {} (built from {}), "
@@ -655,6 +781,21 @@ void CalculixSolverWrapper::run_ccx() {
                    result.details.empty() ? "(the log is empty)" : result.details));
 }
 
+SolverRejectedInput CalculixSolverWrapper::not_converged(const std::string& exit,
+                                                         const std::string& deck,
+                                                         const std::string& log_tail) const {
+  return SolverRejectedInput(
+      name_,
+      fmt::format("solver '{}': ccx did not converge at {} ({}: the increment size fell below the "
+                  "minimum, it was cut back too often or the step needed more increments than "
+                  "*STEP, INC= allows); what to change: a smaller time step "
+                  "(settings.delta_t), a smaller minimum "
+                  "increment on the deck's *STATIC or *DYNAMIC line, or loads the structure can "
+                  "carry (a coupled load far beyond its limit load diverges); deck {}, last lines "
+                  "of {}:\n{}",
+                  name_, position(), exit, deck, log_file_.string(), log_tail));
+}
+
 void CalculixSolverWrapper::finalize_step() {
   if (iteration_ == 0)
     fail(fmt::format("solver '{}': time step {} is committed without a coupling iteration", name_,
@@ -662,6 +803,8 @@ void CalculixSolverWrapper::finalize_step() {
   if (deck_->nonlinear_geometry()) move_faces_to_converged_state();
   if (persistent_ccx_) {
     persistent_ccx_->finalize_step();
+    committed_inputs_.push_back(last_input_);
+    committed_times_.push_back(step_time_);
     return;
   }
   // The last iteration is the converged one: its end state is the next step's start.

@@ -40,6 +40,7 @@
 #include "solver_wrappers/calculix/input_deck.hpp"
 #include "solver_wrappers/calculix/interface_loads.hpp"
 #include "solver_wrappers/calculix/persistent_ccx.hpp"
+#include "solver_wrappers/solver_error.hpp"
 #include "solver_wrappers/solver_wrapper.hpp"
 
 namespace cocopp {
@@ -88,6 +89,8 @@ class CalculixSolverWrapper : public SolverWrapper {
 
  private:
   void read_mode(const Settings& settings);
+  bool has_coupled_executable() const;
+  void choose_auto_mode();
   void read_deck();
   void choose_state_reset();
   void check_dynamic_elements() const;
@@ -97,6 +100,13 @@ class CalculixSolverWrapper : public SolverWrapper {
   void write_loads(const Interface& input) const;
   void run_ccx();
   void start_persistent();
+  void replay_committed_steps(int step);
+  void replay(const std::vector<double>& times, const std::vector<Eigen::VectorXd>& inputs);
+  void restart_persistent();
+  double persistent_end_time() const;
+  RunSettings run_from_start() const;
+  SolverRejectedInput not_converged(const std::string& exit, const std::string& deck,
+                                    const std::string& log_tail) const;
   RowMatrix solve_persistent(const Interface& input);
   void move_faces_to_converged_state();
   /// A restarted run: the state save_restart(step) kept.
@@ -129,7 +139,8 @@ class CalculixSolverWrapper : public SolverWrapper {
   double surface_stiffness_ = 0.0;
   std::string working_directory_where_, input_file_where_, executable_where_, state_reset_where_,
       initial_increment_where_;
-  bool persistent_ = false;  ///< mode: persistent
+  bool persistent_ = false;  ///< mode: persistent (or auto, chosen so)
+  bool auto_mode_ = false;   ///< mode: auto
   std::string coupled_executable_;
   std::string mode_where_;
   RunSettings run_;
@@ -142,6 +153,11 @@ class CalculixSolverWrapper : public SolverWrapper {
   std::filesystem::path ccx_path_;
   StateReset state_reset_ = StateReset::kRestart;
   std::unique_ptr<calculix::PersistentCcx> persistent_ccx_;
+  /// Persistent: every committed step's time and input, for a restart's replay.
+  std::vector<double> committed_times_;
+  std::vector<Eigen::VectorXd> committed_inputs_;
+  Eigen::VectorXd last_input_;
+  double step_time_ = 0.0;
 
   // While running.
   int step_ = 0;

@@ -66,6 +66,12 @@ std::string error_messages(const std::string& log_text) {
   return messages;
 }
 
+bool gave_up(const std::string& log_text) {
+  return log_text.find("increment size smaller than minimum") != std::string::npos ||
+         log_text.find("too many cutbacks") != std::string::npos ||
+         log_text.find("max. # of increments reached") != std::string::npos;
+}
+
 CcxRunResult run_ccx(const CcxRunOptions& options) {
   ChildOptions child_options;
   child_options.command = {options.executable.string(), "-i", options.job};
@@ -94,11 +100,7 @@ CcxRunResult run_ccx(const CcxRunOptions& options) {
   }
   if (result.exit_code == 0) return result;
   const std::string log = read_text(options.log_file);
-  // ccx gives up a step in three ways: an increment fell below the minimum, it was cut back
-  // more often than its controls allow, or the step needed more increments than *STEP, INC=.
-  if (log.find("increment size smaller than minimum") != std::string::npos ||
-      log.find("too many cutbacks") != std::string::npos ||
-      log.find("max. # of increments reached") != std::string::npos) {
+  if (gave_up(log)) {
     result.status = CcxRunResult::Status::kNotConverged;
     result.details = read_last_lines(options.log_file, kLogTailLines);
     return result;

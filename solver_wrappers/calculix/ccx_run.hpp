@@ -46,6 +46,11 @@ struct CcxRestartSupport {
 CcxRestartSupport restart_support(const std::filesystem::path& executable,
                                   const std::filesystem::path& scratch_directory);
 
+/// Whether ccx's log says it gave up a step for want of convergence: an increment fell below the
+/// minimum, it was cut back more often than its controls allow, or the step needed more
+/// increments than *STEP, INC=.
+bool gave_up(const std::string& log_text);
+
 /// ccx's *ERROR messages in a log: each from its "*ERROR" line to the next blank line.
 std::string error_messages(const std::string& log_text);
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <regex>
 #include <set>
 
 #include "core/case/settings.hpp"
@@ -26,6 +27,15 @@ bool ramps(const InputDeck& deck) {
   if (card.find("AMPLITUDE=STEP") != std::string::npos) return false;
   if (card.find("AMPLITUDE=RAMP") != std::string::npos) return true;
   return deck.procedure() == "STATIC";
+}
+
+/// The *STEP card of the long step: AMPLITUDE=STEP, so that the deck's own loads and boundary
+/// values hold their value from the first increment on, as at the end of each step of one ccx
+/// run per time step (over the whole run a ramp would still be rising). The interface loads
+/// ramp (or not) as the deck says: cocopp-ccx sets them itself.
+std::string long_step_card(const std::string& card) {
+  static const std::regex amplitude(R"(,\s*AMPLITUDE\s*=\s*\w+)", std::regex::icase);
+  return std::regex_replace(card, amplitude, "") + ", AMPLITUDE=STEP";
 }
 
 }  // namespace
@@ -65,7 +75,11 @@ void PersistentCcx::start(const RunSettings& run, double end_time) {
                          {{"OMP_NUM_THREADS", threads},
                           {"CCX_NPROC_EQUATION_SOLVER", threads},
                           {"CCX_NPROC_RESULTS", threads},
-                          {"CCX_NPROC_STIFFNESS", threads}},
+                          {"CCX_NPROC_STIFFNESS", threads},
+                          // ccx's Fortran writes unbuffered: in the log in order with its C
+                          // output (cocopp-ccx makes stdout line-buffered), so that its last
+                          // lines say why it stopped; in the .dat file as each step commits.
+                          {"GFORTRAN_UNBUFFERED_ALL", "y"}},
                          nullptr};
   const Settings settings = Settings::load_string(
       fmt::format("type: process\nname: '{}'\nworking_directory: '{}'\ntimeout: {}\n"
@@ -73,7 +87,10 @@ void PersistentCcx::start(const RunSettings& run, double end_time) {
                   options_.name, options_.working_directory.string(), options_.timeout,
                   options_.log_file.string()),
       "(the calculix wrapper's cocopp-ccx)");
-  process_ = std::make_unique<ProcessSolverWrapper>(settings, run, command);
+  // cocopp-ccx always starts from the deck; a restart replays the committed steps through it.
+  RunSettings from_start = run;
+  from_start.timestep_start = 0;
+  process_ = std::make_unique<ProcessSolverWrapper>(settings, from_start, command);
   process_->initialize();
 }
 
@@ -90,6 +107,7 @@ void PersistentCcx::write_deck(double end_time) const {
 
 std::vector<DeckLine> PersistentCcx::long_step(double end_time) const {
   std::vector<DeckLine> step = deck_.step();
+  step.front().text = long_step_card(step.front().text);
   // Time period: the run's. The increments (initial, minimum, maximum) are the deck's, scaled
   // from its step to a coupler time step.
   const std::string increment = ccx_number(initial_increment());
@@ -128,6 +146,12 @@ void PersistentCcx::write_interface() const {
   std::ofstream out(path);
   out << "amplitude " << (ramps(deck_) ? "ramp" : "step") << "\n";
   out << "initial_increment " << ccx_number(initial_increment()) << "\n";
+  // ccx reads a *CLOAD of an axisymmetric model per 360 degrees and divides it by 180 for the
+  // 2 degree wedge it solves (cloads.f); the placeholders' values are set after that.
+  bool axisymmetric = false;
+  for (const auto& [id, element] : deck_.elements())
+    axisymmetric = axisymmetric || element.type.rfind("CAX", 0) == 0;
+  out << "force_scale " << ccx_number(axisymmetric ? 1.0 / 180.0 : 1.0) << "\n";
   out << "pressure_faces " << (options_.pressure ? loads_.faces().size() : 0) << " "
       << (loads_.plane() ? 2 : 0) << "\n";
   if (options_.pressure)

@@ -97,19 +97,21 @@ namespace {
 // committed restart file and the interface displacement with the coupler's state; ccx then
 // continues from the same restart file as it does every step, so the two runs agree to the
 // last digit of ccx's output.
-void expect_restart_equals_uninterrupted_run(const std::string& state_reset, int steps) {
+// `keys`: the wall's own, e.g. "state_reset: replay" or "mode: persistent".
+void expect_restart_equals_uninterrupted_run(const std::string& keys, int steps) {
+  const std::string label = keys.substr(keys.rfind(':') + 2);
   const auto prepare = [&](const std::string& copy, int steps) {
     const fs::path directory = copy_example("tube/flow_calculix", copy);
     edit(directory / "case.yaml", "number_of_timesteps: 100",
          "number_of_timesteps: " + std::to_string(steps));
     edit(directory / "case.yaml", "save_results: false",
-         "save_results: false\n      state_reset: " + state_reset);
+         "save_results: false\n      " + keys);
     return directory;
   };
-  const fs::path whole = prepare("calculix_whole_" + state_reset, steps);
+  const fs::path whole = prepare("calculix_whole_" + label, steps);
   const CommandResult reference = run_cocopp("run --quiet " + (whole / "case.yaml").string());
   ASSERT_EQ(reference.exit_code, 0) << reference.output;
-  const fs::path split = prepare("calculix_split_" + state_reset, steps / 2);
+  const fs::path split = prepare("calculix_split_" + label, steps / 2);
   const CommandResult first = run_cocopp("run --quiet " + (split / "case.yaml").string());
   ASSERT_EQ(first.exit_code, 0) << first.output;
   edit(split / "case.yaml", "number_of_timesteps: " + std::to_string(steps / 2),
@@ -129,10 +131,16 @@ void expect_restart_equals_uninterrupted_run(const std::string& state_reset, int
 }  // namespace
 
 TEST(CalculixExample, ARestartedRunEqualsTheUninterruptedOneWithRestartFiles) {
-  expect_restart_equals_uninterrupted_run("restart", 10);
+  expect_restart_equals_uninterrupted_run("mode: per_iteration\n      state_reset: restart", 10);
 }
 
 TEST(CalculixExample, ARestartedRunEqualsTheUninterruptedOneWithReplay) {
   // Replay runs every committed step again in every iteration: 3 + 3 steps.
-  expect_restart_equals_uninterrupted_run("replay", 6);
+  expect_restart_equals_uninterrupted_run("mode: per_iteration\n      state_reset: replay", 6);
+}
+
+// Persistent (cocopp-ccx): the restarted run's wrapper replays the committed steps' inputs
+// through a new cocopp-ccx, which ends in the same state.
+TEST(CalculixExample, ARestartedRunEqualsTheUninterruptedOnePersistent) {
+  expect_restart_equals_uninterrupted_run("mode: persistent", 10);
 }

@@ -42,6 +42,10 @@ struct cocopp_ccx_increment {
   int *istab;
   int *nk, *mt, *ne0, *nstate, *mi, *neq, *nboun, *nmethod, *ithermal, *nener;
   double **co;
+  /* the mesh, for ccx's own mapping of its 3D expansion back onto 1D/2D elements' nodes */
+  int **ipkon, **kon, *ne, *ielprop;
+  char **lakon;
+  double *prop;
   /* the state ccx's own cut-back restores (nonlingeo.c, "icutb!=0") */
   double **vold, **veold, **accold, **f, **fext, **fnext, **cv, **sti, **eme, **ener, **xstate,
       **xbounact, **t1act;

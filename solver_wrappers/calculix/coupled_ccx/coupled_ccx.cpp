@@ -13,6 +13,7 @@
 // has a placeholder load for every entry (so that ccx allocates it):
 //   amplitude ramp|step
 //   initial_increment T   (each coupler time step starts with an increment of T, seconds)
+//   force_scale S         (what ccx makes of a *CLOAD value: 1/180 in an axisymmetric model)
 //   pressure_faces N OFFSET then N lines "element face" (input pressure, *DLOAD P<face>;
 //                         OFFSET 2 for plane elements, whose faces ccx numbers from 3)
 //   force_nodes N DOFS    then N lines "node"           (input force, *CLOAD dofs 1..DOFS)
@@ -39,6 +40,12 @@
 
 extern "C" int cocopp_ccx_main(int argc, char** argv);  // ccx's main, renamed at build time
 
+// ccx's interpolation of its 3D expansion of 1D/2D elements back onto their own nodes, as it
+// prints and writes them (map3dto1d2d.f; prototype as in ccx's CalculiX.h).
+extern "C" void map3dto1d2d_(double* yn, int* ipkon, int* inum, int* kon, char* lakon, int* nfield,
+                             int* nk, int* ne, char* cflag, double* co, double* vold, int* iforce,
+                             int* mi, int* ielprop, double* prop);
+
 namespace {
 
 constexpr const char* kInterfaceFile = "cocopp_interface.txt";
@@ -46,6 +53,7 @@ constexpr const char* kInterfaceFile = "cocopp_interface.txt";
 struct InterfaceLists {
   bool ramp = true;  ///< loads ramp over a coupling step (ccx's static default) or jump
   double initial_increment = 0.0;                   ///< of each coupler time step (step time)
+  double force_scale = 1.0;                         ///< ccx's reading of a *CLOAD value (cloads.f)
   std::vector<std::pair<int, int>> pressure_faces;  ///< element, face 1..6
   int face_offset = 0;  ///< ccx numbers a plane element's faces as its 3D expansion's: +2
   std::vector<int> force_nodes;
@@ -68,6 +76,8 @@ InterfaceLists read_interface(const std::string& file) {
   lists.ramp = amplitude == "ramp";
   expect("initial_increment");
   in >> lists.initial_increment;
+  expect("force_scale");
+  in >> lists.force_scale;
   expect("pressure_faces");
   in >> count >> lists.face_offset;
   lists.pressure_faces.resize(count);
@@ -221,7 +231,8 @@ class CoupledCcx : public cocopp::sdk::Solver {
           committed_[i] + fraction * (target_[i] - committed_[i]);
     for (std::size_t i = 0; i < force_entries_.size(); ++i) {
       const std::size_t k = force_values_[i];
-      loads.xforcact[force_entries_[i]] = committed_[k] + fraction * (target_[k] - committed_[k]);
+      loads.xforcact[force_entries_[i]] =
+          lists_.force_scale * (committed_[k] + fraction * (target_[k] - committed_[k]));
     }
   }
 
@@ -312,10 +323,19 @@ class CoupledCcx : public cocopp::sdk::Solver {
     if (*inc.dtheta > left || left - *inc.dtheta < kThetaTolerance) *inc.dtheta = left;
   }
 
+  // As ccx prints them: a plane or axisymmetric model's nodes take the mean across the 3D
+  // expansion ccx solves (its own values there are not kept up to date).
   std::vector<double> displacements(const cocopp_ccx_increment& inc) const {
     std::vector<double> u;
     u.reserve(3 * lists_.displacement_nodes.size());
-    const double* vold = *inc.vold;
+    const std::size_t size = static_cast<std::size_t>(*inc.mt) * *inc.nk;
+    std::vector<double> v(*inc.vold, *inc.vold + size);
+    std::vector<int> inum(static_cast<std::size_t>(*inc.nk), 0);
+    int nfield = *inc.mt, iforce = 0;
+    char cflag = ' ';
+    map3dto1d2d_(v.data(), *inc.ipkon, inum.data(), *inc.kon, *inc.lakon, &nfield, inc.nk, inc.ne,
+                 &cflag, *inc.co, *inc.vold, &iforce, inc.mi, inc.ielprop, inc.prop);
+    const double* vold = v.data();
     for (int node : lists_.displacement_nodes)
       for (int k = 1; k <= 3; ++k)
         u.push_back(vold[static_cast<std::size_t>(*inc.mt) * (node - 1) + k]);
@@ -502,6 +522,9 @@ int main(int argc, char** argv) {
     print_usage(argv[0]);
     return 0;
   }
+  // ccx ends the process where it gives up (exit in its thread): its last lines, which say
+  // why, must be in the log by then.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   std::vector<std::string> ccx_arguments{"ccx"};
   for (int i = 1; i < argc; ++i) ccx_arguments.emplace_back(argv[i]);
   CoupledCcx solver(ccx_arguments);

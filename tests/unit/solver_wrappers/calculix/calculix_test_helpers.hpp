@@ -11,6 +11,7 @@
 #include <string>
 
 #include "core/case/settings.hpp"
+#include "solver_wrappers/calculix/calculix_solver_wrapper.hpp"
 #include "solver_wrappers/solver_error.hpp"
 #include "solver_wrappers/solver_wrapper.hpp"
 #include "tests/support/calculix_models.hpp"
@@ -54,11 +55,34 @@ class CalculixCase {
                        const std::string& node_set = "INNERN") {
     create(deck, keys, surface, node_set);
     wrapper_->initialize();
-    wrapper_->initialize_step(1, 1.0);
+    wrapper_->initialize_step(1, run_.delta_t);
+    step_ = 1;
+    committed_ = false;
     return *wrapper_;
   }
 
+  /// Commit the time step (unless printed_results() did) and begin the next.
+  void next_step() {
+    if (!committed_) wrapper_->finalize_step();
+    ++step_;
+    wrapper_->initialize_step(step_, step_ * run_.delta_t);
+    committed_ = false;
+  }
+
+  /// The .dat file with what the deck's *NODE PRINT cards printed for the last solve(): per
+  /// iteration, that iteration's ccx run's; persistent, cocopp-ccx prints at commits, so the
+  /// step is committed here (the next solve() begins the next step).
+  std::filesystem::path printed_results() {
+    if (!dynamic_cast<const CalculixSolverWrapper&>(*wrapper_).persistent())
+      return directory_ / "wall/cocopp_iteration.dat";
+    if (!committed_) wrapper_->finalize_step();
+    committed_ = true;
+    return directory_ / "wall/cocopp_persistent.dat";
+  }
+
   SolverWrapper& wrapper() { return *wrapper_; }
+  /// The run settings the next create() passes (e.g. timestep_start for a restart).
+  RunSettings& run() { return run_; }
   std::filesystem::path path(const std::string& name) const { return directory_ / name; }
 
   /// The wrapper's input with a uniform pressure and traction on every face (the model part
@@ -74,6 +98,7 @@ class CalculixCase {
 
   /// One coupling iteration with a uniform pressure; the displacements (nodes x 3).
   RowMatrix solve(double pressure, const Eigen::Vector3d& traction = Eigen::Vector3d::Zero()) {
+    if (committed_) next_step();
     const Interface& output = wrapper_->solve(loads(pressure, traction));
     const auto& part = output.parts().front().model_part->name;
     return output.values(part, "displacement");
@@ -101,7 +126,14 @@ class CalculixCase {
   std::unique_ptr<Settings> settings_;
   std::unique_ptr<SolverWrapper> wrapper_;
   bool axisymmetric_ = false;  ///< a CAX deck: x is the radius, y the axis
+  int step_ = 0;
+  bool committed_ = false;  ///< printed_results() committed the step
 };
+
+/// The wrapper's keys for a mode ("per_iteration" or "persistent").
+inline std::string mode_keys(const std::string& mode) {
+  return "mode: " + mode + "\n";
+}
 
 /// Every "<quantity> ... for set <set> and time <t>" block of a .dat file: time -> rows of
 /// numbers (node id first for nodal values; the totals line alone for totals).

@@ -32,11 +32,16 @@ using testing::SectorCylinder;
 using testing::kDatPrecision;
 using testing::kYield;
 using testing::max_abs;
+using testing::mode_keys;
 
-TEST(CalculixCcx, ThickWalledCylinderMatchesLame) {
+/// What both modes must do alike: run per iteration (CalculixCcx/...) and persistent
+/// (CoupledCcx/..., where cocopp-ccx is built).
+class EveryMode : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(EveryMode, ThickWalledCylinderMatchesLame) {
   CalculixCase test;
   SectorCylinder cylinder;
-  test.start(cylinder.deck());
+  test.start(cylinder.deck(), mode_keys(GetParam()));
   const double p = 100e6;
   const RowMatrix u = test.solve(p);
   const Eigen::VectorXd radial = test.radial(u);
@@ -56,43 +61,42 @@ TEST(CalculixCcx, ThickWalledCylinderMatchesLame) {
 
 /// Permanent radial displacement at the bore after loading to `p` and unloading, relative to
 /// the displacement under `p`.
-double permanent_set(double p) {
+double permanent_set(double p, const std::string& mode) {
   CalculixCase test;
   SectorCylinder cylinder;
   cylinder.radial = 16;
   cylinder.grading = 4.0;
   cylinder.yield_stress = kYield;
-  test.start(cylinder.deck());
+  test.start(cylinder.deck(), mode_keys(mode));
   const double loaded = max_abs(test.radial(test.solve(p)));
-  test.wrapper().finalize_step();
-  test.wrapper().initialize_step(2, 2.0);
+  test.next_step();
   const double unloaded = max_abs(test.radial(test.solve(0.0)));
   return unloaded / loaded;
 }
 
-TEST(CalculixCcx, YieldingStartsAtTheAnalyticPressure) {
+TEST_P(EveryMode, YieldingStartsAtTheAnalyticPressure) {
   SectorCylinder cylinder;
   cylinder.yield_stress = kYield;
   const double p_yield = cylinder.yield_onset_pressure();
-  const double below = permanent_set(0.97 * p_yield);
-  const double above = permanent_set(1.03 * p_yield);
+  const double below = permanent_set(0.97 * p_yield, GetParam());
+  const double above = permanent_set(1.03 * p_yield, GetParam());
   // Below: elastic, unloading returns to zero (to round-off); above: a permanent set (8e-4 of
   // the loaded displacement at 1.03 p_y with 16 graded elements).
   EXPECT_LT(below, 10 * kDatPrecision);
   EXPECT_GT(above, 1e-4);
 }
 
-TEST(CalculixCcx, LoadsOnASectorHaveTheAnalyticTotals) {
+TEST_P(EveryMode, LoadsOnASectorHaveTheAnalyticTotals) {
   CalculixCase test;
   SectorCylinder cylinder;
   cylinder.plane_strain = false;  // axially supported at the outer edge of z = 0 only
   cylinder.extra_step_cards =
       "*NODE PRINT, NSET=SUPPORT, TOTALS=ONLY, GLOBAL=YES\nRF\n"
       "*NODE PRINT, NSET=INNERN, GLOBAL=NO\nRF\n";
-  test.start(cylinder.deck());
+  test.start(cylinder.deck(), mode_keys(GetParam()));
   const double p = 10e6, tau = 3e6;
   test.solve(p, Eigen::Vector3d(0, 0, tau));
-  const auto dat = test.path("wall/cocopp_iteration.dat");
+  const auto dat = test.printed_results();
   const double axial = tau * 2 * kPi * cylinder.ri * cylinder.length / 360.0;
   const double radial = p * 2 * kPi * cylinder.ri * cylinder.length / 360.0;
   // ccx's RF is each node's internal force: summed over the support, the axial reaction; at
@@ -112,10 +116,10 @@ TEST(CalculixCcx, LoadsOnASectorHaveTheAnalyticTotals) {
 // the bore) must deform the sector like the pressure does: the nodal forces are rotated into
 // the nodes' cylindrical *TRANSFORM systems (the sector lies at 45 degrees, where a missing
 // rotation would put half of each force on the constrained hoop direction).
-TEST(CalculixCcx, TractionIsRotatedIntoTheNodalSystems) {
+TEST_P(EveryMode, TractionIsRotatedIntoTheNodalSystems) {
   CalculixCase test;
   SectorCylinder cylinder;
-  test.start(cylinder.deck());
+  test.start(cylinder.deck(), mode_keys(GetParam()));
   const double p = 50e6;
   const Eigen::VectorXd by_pressure = test.radial(test.solve(p));
   Interface input = test.loads(0.0);
@@ -138,30 +142,28 @@ TEST(CalculixCcx, TractionIsRotatedIntoTheNodalSystems) {
 // axial shear traction tau on the bore gives the axial reaction tau 2 pi ri L, and an axial
 // traction q on the end (an annulus, where the ring weight 2 pi r varies across each edge) the
 // reaction q pi (ro^2 - ri^2), as ccx's own pressure q on that end does.
-TEST(CalculixCcx, LoadsOnAnAxisymmetricModelHaveTheAnalyticTotals) {
+TEST_P(EveryMode, LoadsOnAnAxisymmetricModelHaveTheAnalyticTotals) {
   SectorCylinder cylinder;
   cylinder.element_type = "CAX8";
   cylinder.plane_strain = false;  // axially supported at the outer edge of y = 0 only
   cylinder.extra_step_cards = "*NODE PRINT, NSET=SUPPORT, TOTALS=ONLY\nRF\n";
   constexpr double kRingOverWedge = 180.0;
   const auto axial_reaction = [&](CalculixCase& test) {
-    return -kRingOverWedge *
-           last_total_force(test.path("wall/cocopp_iteration.dat"), "SUPPORT").y();
+    return -kRingOverWedge * last_total_force(test.printed_results(), "SUPPORT").y();
   };
   CalculixCase bore;
-  bore.start(cylinder.deck());
+  bore.start(cylinder.deck(), mode_keys(GetParam()));
   const double tau = 3e6;
   bore.solve(0.0, Eigen::Vector3d(0, tau, 0));
   const double on_bore = tau * cylinder.inner_area();
   EXPECT_NEAR(axial_reaction(bore), on_bore, 1e-6 * on_bore);
   // Next step (restarted with the patched ccx): still axisymmetric, *CLOAD still per 360°.
-  bore.wrapper().finalize_step();
-  bore.wrapper().initialize_step(2, 2.0);
+  bore.next_step();
   bore.solve(0.0, Eigen::Vector3d(0, tau, 0));
   EXPECT_NEAR(axial_reaction(bore), on_bore, 1e-6 * on_bore) << "after a restart";
 
   CalculixCase end;
-  end.start(cylinder.deck(), "", "TOP", "TOPN");
+  end.start(cylinder.deck(), mode_keys(GetParam()), "TOP", "TOPN");
   const double q = 5e6;
   const double on_end = q * kPi * (cylinder.ro * cylinder.ro - cylinder.ri * cylinder.ri);
   end.solve(0.0, Eigen::Vector3d(0, -q, 0));
@@ -175,11 +177,11 @@ TEST(CalculixCcx, LoadsOnAnAxisymmetricModelHaveTheAnalyticTotals) {
 // *DLOAD, to 2e-5 (measured 7.6e-6): ccx integrates the pressure over the flat faces of the
 // 2 degree wedge it expands the model into (chords: 1 - sin(1°)/1° = 5e-5 short of the arc),
 // not over the ring.
-TEST(CalculixCcx, RadialTractionOnAnAxisymmetricModelActsLikeThePressure) {
+TEST_P(EveryMode, RadialTractionOnAnAxisymmetricModelActsLikeThePressure) {
   CalculixCase test;
   SectorCylinder cylinder;
   cylinder.element_type = "CAX8";
-  test.start(cylinder.deck());
+  test.start(cylinder.deck(), mode_keys(GetParam()));
   const double p = 50e6;
   const Eigen::VectorXd by_pressure = test.radial(test.solve(p));
   const Eigen::VectorXd by_traction = test.radial(test.solve(0.0, Eigen::Vector3d(p, 0, 0)));
@@ -190,28 +192,36 @@ TEST(CalculixCcx, RadialTractionOnAnAxisymmetricModelActsLikeThePressure) {
 // Plane strain (CPE8, thickness 0.5): the strip compressed by a uniform pressure shortens by
 // p Ly (1 - nu^2) / E, and the reactions equal pressure and shear traction times the loaded
 // length times the thickness.
-TEST(CalculixCcx, PlaneStrainStripHasTheAnalyticResponseAndTotals) {
+TEST_P(EveryMode, PlaneStrainStripHasTheAnalyticResponseAndTotals) {
   CalculixCase test;
   testing::PlaneStrainStrip strip;
   strip.extra_step_cards = "*NODE PRINT, NSET=BOTTOM, TOTALS=ONLY\nRF\n";
-  test.start(strip.deck(), "", "TOP", "TOPN");
-  const auto dat = test.path("wall/cocopp_iteration.dat");
+  test.start(strip.deck(), mode_keys(GetParam()), "TOP", "TOPN");
   const double p = 20e6, tau = 5e6;
   const RowMatrix u = test.solve(p);
   const double shortening = p * strip.ly * (1 - strip.poisson * strip.poisson) / strip.young;
   for (Eigen::Index i = 0; i < u.rows(); ++i) EXPECT_NEAR(u(i, 1), -shortening, 1e-6 * shortening);
-  EXPECT_NEAR(last_total_force(dat, "BOTTOM").y(), p * strip.lx * strip.thickness,
-              1e-6 * p * strip.lx * strip.thickness);
+  EXPECT_NEAR(last_total_force(test.printed_results(), "BOTTOM").y(),
+              p * strip.lx * strip.thickness, 1e-6 * p * strip.lx * strip.thickness);
   test.solve(0.0, Eigen::Vector3d(tau, 0, 0));
-  EXPECT_NEAR(-last_total_force(dat, "BOTTOM").x(), tau * strip.lx * strip.thickness,
-              1e-6 * tau * strip.lx * strip.thickness);
+  EXPECT_NEAR(-last_total_force(test.printed_results(), "BOTTOM").x(),
+              tau * strip.lx * strip.thickness, 1e-6 * tau * strip.lx * strip.thickness);
 }
+
+std::string mode_name(const ::testing::TestParamInfo<std::string>& info) {
+  return info.param == "persistent" ? "Persistent" : "PerIteration";
+}
+
+INSTANTIATE_TEST_SUITE_P(CalculixCcx, EveryMode, ::testing::Values("per_iteration"), mode_name);
+#ifdef COCOPP_HAVE_COUPLED_CCX
+INSTANTIATE_TEST_SUITE_P(CoupledCcx, EveryMode, ::testing::Values("persistent"), mode_name);
+#endif
 
 TEST(CalculixCcx, DeckErrorQuotesCcx) {
   CalculixCase test;
   SectorCylinder cylinder;
   cylinder.extra_step_cards = "*BOUNDARY\nNOSUCHSET, 1, 1\n";
-  test.start(cylinder.deck());
+  test.start(cylinder.deck(), mode_keys("per_iteration"));
   const std::string message = testing::error_message<SolverError>([&] { test.solve(1e6); });
   EXPECT_CONTAINS(message, "ccx rejected the input deck at time step 1, coupling iteration 1");
   EXPECT_CONTAINS(message, "cocopp_iteration.inp (built from wall.inp)");
@@ -221,11 +231,14 @@ TEST(CalculixCcx, DeckErrorQuotesCcx) {
 
 // Non-convergence rejects the input (the coupled solver may step back): the wrapper keeps the
 // step's start state and solves the step again for loads the cylinder can carry, as before.
-TEST(CalculixCcx, NonConvergenceRejectsTheInputAndKeepsTheStepStart) {
+/// Per iteration, and persistent: where cocopp-ccx ends, a new one replays the committed step.
+class NonConvergence : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(NonConvergence, RejectsTheInputAndKeepsTheStepStart) {
   CalculixCase test;
   SectorCylinder cylinder;
   cylinder.yield_stress = kYield;
-  test.start(cylinder.deck());
+  test.start(cylinder.deck(), mode_keys(GetParam()));
   test.solve(0.5 * cylinder.yield_onset_pressure());
   test.wrapper().finalize_step();
   test.wrapper().initialize_step(2, 2.0);
@@ -234,12 +247,19 @@ TEST(CalculixCcx, NonConvergenceRejectsTheInputAndKeepsTheStepStart) {
   const std::string message =
       testing::error_message<SolverRejectedInput>([&] { test.solve(2 * kYield); });
   EXPECT_CONTAINS(message, "ccx did not converge at time step 2, coupling iteration 2");
-  EXPECT_CONTAINS(message, "exited with code 201");
+  EXPECT_CONTAINS(message,
+                  GetParam() == "persistent" ? "cocopp-ccx exited" : "exited with code 201");
   EXPECT_CONTAINS(message, "increment size smaller than minimum");
   EXPECT_CONTAINS(message, "what to change: a smaller time step (settings.delta_t)");
   const RowMatrix after = test.solve(0.6 * cylinder.yield_onset_pressure());
   EXPECT_LT((after - before).cwiseAbs().maxCoeff(), 1e-9 * before.cwiseAbs().maxCoeff());
 }
+
+INSTANTIATE_TEST_SUITE_P(CalculixCcx, NonConvergence, ::testing::Values("per_iteration"),
+                         mode_name);
+#ifdef COCOPP_HAVE_COUPLED_CCX
+INSTANTIATE_TEST_SUITE_P(CoupledCcx, NonConvergence, ::testing::Values("persistent"), mode_name);
+#endif
 
 /// The .sta attempts and the *STATIC data line of the wrapper's last ccx run.
 struct LastRun {
@@ -278,7 +298,8 @@ TEST(CalculixCcx, CarriedInitialIncrementSkipsTheCutBack) {
   for (const bool carry : {false, true}) {
     SCOPED_TRACE(carry ? "carried" : "the deck's");
     CalculixCase test(1e-4);
-    test.start(cylinder.deck(), carry ? "initial_increment: previous_iteration\n" : "");
+    test.start(cylinder.deck(),
+               carry ? "initial_increment: previous_iteration\n" : mode_keys("per_iteration"));
     const RowMatrix first = test.solve(p);
     const LastRun first_run = last_run(test);
     ASSERT_FALSE(first_run.attempts.empty());
