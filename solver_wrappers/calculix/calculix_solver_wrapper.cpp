@@ -628,7 +628,8 @@ const Interface& CalculixSolverWrapper::solve(const Interface& input) {
       throw not_converged("cocopp-ccx exited; restarted with the committed steps",
                           file(std::string(calculix::PersistentCcx::kJob) + ".inp").string(), tail);
     }
-    last_timing_ = {seconds_since(start), 0.0};
+    const double process = persistent_ccx_->process_seconds();
+    last_timing_ = {process, seconds_since(start) - process};
     return output_interface_;
   }
   write_loads(input);

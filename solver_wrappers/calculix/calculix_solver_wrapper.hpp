@@ -57,8 +57,10 @@ class CalculixSolverWrapper : public SolverWrapper {
 
   /// Time spent per coupling iteration, for the overhead benchmark.
   struct Timing {
-    double ccx_seconds = 0.0;      ///< ccx's run (process start to exit)
-    double wrapper_seconds = 0.0;  ///< writing loads and deck, copying restart, reading .dat
+    /// ccx's run (process start to exit); persistent: cocopp-ccx's solve with the round trip
+    double ccx_seconds = 0.0;
+    /// writing loads and deck, copying restart, reading .dat; persistent: the nodal forces
+    double wrapper_seconds = 0.0;
   };
 
   CalculixSolverWrapper(const Settings& settings, const RunSettings& run);

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <fstream>
 #include <regex>
 #include <set>
@@ -19,6 +20,16 @@ std::string join_fields(const std::vector<std::string>& fields) {
   std::string line;
   for (std::size_t i = 0; i < fields.size(); ++i) line += (i ? ", " : "") + fields[i];
   return line;
+}
+
+/// Whether ccx solves the deck's step as linear static (linstatic.c): no NLGEOM, no material
+/// that makes it nonlinear (calinput sets iperturb for those).
+bool linear_static(const InputDeck& deck) {
+  if (deck.procedure() != "STATIC" || deck.nonlinear_geometry()) return false;
+  for (const char* keyword : {"PLASTIC", "CREEP", "CYCLIC HARDENING", "USER MATERIAL", "DEPVAR",
+                              "HYPERELASTIC", "HYPERFOAM", "DEFORMATION PLASTICITY"})
+    if (deck.has_keyword(keyword)) return false;
+  return true;
 }
 
 /// Whether the deck's loads ramp over a step (ccx's default in a static step) or jump.
@@ -168,6 +179,9 @@ double PersistentCcx::time_scale() const {
 }
 
 double PersistentCcx::initial_increment() const {
+  // A linear static step is one solve for ccx, whatever its increments say (linstatic.c): one
+  // increment per time step here too.
+  if (linear_static(deck_)) return run_.delta_t;
   return std::min(deck_.initial_increment(), deck_.step_time_period()) * time_scale();
 }
 
@@ -187,7 +201,11 @@ RowMatrix PersistentCcx::solve(const Eigen::VectorXd& pressure,
         loads_.in_node_system(force_nodes_[i], global).transpose();
   }
   // ccx keeps displacements in global x, y, z (a *TRANSFORM applies to loads and constraints).
-  return process_->solve(input).values("displacement_nodes", "displacement");
+  const auto start = std::chrono::steady_clock::now();
+  RowMatrix u = process_->solve(input).values("displacement_nodes", "displacement");
+  process_seconds_ =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return u;
 }
 
 void PersistentCcx::finalize_step() {

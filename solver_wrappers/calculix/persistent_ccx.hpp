@@ -64,6 +64,8 @@ class PersistentCcx {
                   const std::map<std::int64_t, Eigen::Vector3d>& forces);
   void finalize_step();
   void finalize();
+  /// The last solve()'s time in cocopp-ccx's process (its solve and the protocol round trip).
+  double process_seconds() const { return process_seconds_; }
 
  private:
   void write_deck(double end_time) const;
@@ -82,6 +84,7 @@ class PersistentCcx {
   std::string model_file_;
   RunSettings run_;
   std::unique_ptr<ProcessSolverWrapper> process_;
+  double process_seconds_ = 0.0;
 };
 
 }  // namespace cocopp::calculix

@@ -104,8 +104,7 @@ void expect_restart_equals_uninterrupted_run(const std::string& keys, int steps)
     const fs::path directory = copy_example("tube/flow_calculix", copy);
     edit(directory / "case.yaml", "number_of_timesteps: 100",
          "number_of_timesteps: " + std::to_string(steps));
-    edit(directory / "case.yaml", "save_results: false",
-         "save_results: false\n      " + keys);
+    edit(directory / "case.yaml", "save_results: false", "save_results: false\n      " + keys);
     return directory;
   };
   const fs::path whole = prepare("calculix_whole_" + label, steps);

@@ -38,14 +38,14 @@ struct cocopp_ccx_increment {
   double *theta, *dtheta, *tper, *ttime;
   int *iinc, *jprint;
   /* ccx's increment control: the reference increment and whether the last converged fast */
-  double *dthetaref;
-  int *istab;
+  double* dthetaref;
+  int* istab;
   int *nk, *mt, *ne0, *nstate, *mi, *neq, *nboun, *nmethod, *ithermal, *nener;
-  double **co;
+  double** co;
   /* the mesh, for ccx's own mapping of its 3D expansion back onto 1D/2D elements' nodes */
   int **ipkon, **kon, *ne, *ielprop;
-  char **lakon;
-  double *prop;
+  char** lakon;
+  double* prop;
   /* the state ccx's own cut-back restores (nonlingeo.c, "icutb!=0") */
   double **vold, **veold, **accold, **f, **fext, **fnext, **cv, **sti, **eme, **ener, **xstate,
       **xbounact, **t1act;
@@ -55,25 +55,25 @@ struct cocopp_ccx_increment {
 struct cocopp_ccx_loads {
   /* concentrated loads (*CLOAD): node and direction per entry, actual values */
   int nforc;
-  const int *nodeforc; /* (2, nforc): node, 0 */
-  const int *ndirforc; /* direction 1..3 (0: heat) */
-  double *xforcact;
+  const int* nodeforc; /* (2, nforc): node, 0 */
+  const int* ndirforc; /* direction 1..3 (0: heat) */
+  double* xforcact;
   /* distributed loads (*DLOAD): element and label ("P3", 20 characters) per entry */
   int nload;
-  const int *nelemload; /* (2, nload): element, 0 */
-  const char *sideload;
-  double *xloadact; /* (2, nload): value, 0 */
+  const int* nelemload; /* (2, nload): element, 0 */
+  const char* sideload;
+  double* xloadact; /* (2, nload): value, 0 */
   double reltime;   /* theta + dtheta of the increment */
 };
 
 struct cocopp_ccx_hooks {
-  enum cocopp_ccx_action (*increment_start)(struct cocopp_ccx_increment *increment);
-  void (*apply_loads)(struct cocopp_ccx_increment *increment, struct cocopp_ccx_loads *loads);
-  enum cocopp_ccx_action (*increment_end)(struct cocopp_ccx_increment *increment);
+  enum cocopp_ccx_action (*increment_start)(struct cocopp_ccx_increment* increment);
+  void (*apply_loads)(struct cocopp_ccx_increment* increment, struct cocopp_ccx_loads* loads);
+  enum cocopp_ccx_action (*increment_end)(struct cocopp_ccx_increment* increment);
 };
 
 /* Defined in the patched nonlingeo.c; set by cocopp-ccx before it runs ccx. */
-extern struct cocopp_ccx_hooks *cocopp_ccx_hooks;
+extern struct cocopp_ccx_hooks* cocopp_ccx_hooks;
 
 #ifdef __cplusplus
 }
