@@ -20,7 +20,7 @@ load_driven_wire=(--set mesh.wire_model=axisymmetric
 # name | needs | time on 2 cores | docs page
 figures=(
   "stability|the tube solvers|2 min|docs/stability.md"
-  "tube_flow_calculix|CalculiX|2 min|docs/solver-wrappers-calculix.md"
+  "tube_flow_calculix|CalculiX|15 s|docs/solver-wrappers-calculix.md"
   "openfoam_wedge|OpenFOAM|1 min|docs/solver-wrappers-openfoam.md"
   "wire_drawing_bench|OpenFOAM and CalculiX|20 min|docs/wire-drawing.md"
   "wire_drawing_bench_load_driven|OpenFOAM and CalculiX|8 min|docs/wire-drawing.md"

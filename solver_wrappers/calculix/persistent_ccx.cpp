@@ -69,6 +69,8 @@ std::string PersistentCcx::unsupported(const InputDeck& deck) {
   if (deck.procedure() != "STATIC" && deck.procedure() != "DYNAMIC")
     return fmt::format("its step is a *{} (persistent runs *STATIC and *DYNAMIC steps)",
                        deck.procedure());
+  if (upper(deck.step().at(deck.procedure_line()).text).find("EXPLICIT") != std::string::npos)
+    return "its *DYNAMIC step is explicit (persistent runs implicit dynamics)";
   for (const char* keyword : {"CONTACT PAIR", "TIE", "SURFACE INTERACTION"})
     if (deck.has_keyword(keyword))
       return fmt::format("it has *{} (contact's state is not in the in-memory reset)", keyword);
