@@ -179,7 +179,8 @@ def main():
     env["PATH"] = f"{bin_dir}:/usr/bin:/bin:{env.get('PATH', '')}"
     outputs = {}
     with tempfile.TemporaryDirectory(prefix="cocopp-doc-commands-") as checkout:
-        for path in tracked_files(source, ("README.md", "bench", "docs", "examples", "scripts")):
+        for path in tracked_files(source, ("README.md", "bench", "docs", "examples", "scripts",
+                                           "solver_wrappers/sdk")):  # the Python SDK
             os.makedirs(os.path.join(checkout, os.path.dirname(path)), exist_ok=True)
             shutil.copy2(os.path.join(source, path), os.path.join(checkout, path))
         os.symlink(os.path.dirname(bin_dir), os.path.join(checkout, "build"))
