@@ -22,14 +22,20 @@ std::string join_fields(const std::vector<std::string>& fields) {
   return line;
 }
 
-/// Whether ccx solves the deck's step as linear static (linstatic.c): no NLGEOM, no material
-/// that makes it nonlinear (calinput sets iperturb for those).
-bool linear_static(const InputDeck& deck) {
-  if (deck.procedure() != "STATIC" || deck.nonlinear_geometry()) return false;
-  for (const char* keyword : {"PLASTIC", "CREEP", "CYCLIC HARDENING", "USER MATERIAL", "DEPVAR",
-                              "HYPERELASTIC", "HYPERFOAM", "DEFORMATION PLASTICITY"})
+/// Whether the deck's model is linear: no NLGEOM, no material that makes it nonlinear
+/// (calinput.f raises iperturb for those), no *GAP or spring that could.
+bool linear(const InputDeck& deck) {
+  if (deck.nonlinear_geometry()) return false;
+  for (const char* keyword :
+       {"PLASTIC", "CREEP", "CYCLIC HARDENING", "USER MATERIAL", "DEPVAR", "HYPERELASTIC",
+        "HYPERFOAM", "DEFORMATION PLASTICITY", "GAP", "SPRING", "USER ELEMENT"})
     if (deck.has_keyword(keyword)) return false;
   return true;
+}
+
+/// Whether ccx solves the deck's step as linear static (linstatic.c).
+bool linear_static(const InputDeck& deck) {
+  return deck.procedure() == "STATIC" && linear(deck);
 }
 
 /// Whether the deck's loads ramp over a step (ccx's default in a static step) or jump.
@@ -165,6 +171,7 @@ void PersistentCcx::write_interface() const {
   for (const auto& [id, element] : deck_.elements())
     axisymmetric = axisymmetric || element.type.rfind("CAX", 0) == 0;
   out << "force_scale " << ccx_number(axisymmetric ? 1.0 / 180.0 : 1.0) << "\n";
+  out << "linear " << (linear(deck_) ? 1 : 0) << "\n";
   out << "pressure_faces " << (options_.pressure ? loads_.faces().size() : 0) << " "
       << (loads_.plane() ? 2 : 0) << "\n";
   if (options_.pressure)

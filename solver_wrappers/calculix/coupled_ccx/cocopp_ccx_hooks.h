@@ -70,6 +70,10 @@ struct cocopp_ccx_hooks {
   enum cocopp_ccx_action (*increment_start)(struct cocopp_ccx_increment* increment);
   void (*apply_loads)(struct cocopp_ccx_increment* increment, struct cocopp_ccx_loads* loads);
   enum cocopp_ccx_action (*increment_end)(struct cocopp_ccx_increment* increment);
+  /* Non-zero for a linear model (no NLGEOM, no nonlinear material; the wrapper decides):
+     checkconvergence.c accepts a first Newton iteration whose residual meets the force
+     criterion, where ccx always makes a second one to see the correction vanish. */
+  int linear;
 };
 
 /* Defined in the patched nonlingeo.c; set by cocopp-ccx before it runs ccx. */

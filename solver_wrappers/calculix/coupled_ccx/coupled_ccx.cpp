@@ -14,6 +14,7 @@
 //   amplitude ramp|step
 //   initial_increment T   (each coupler time step starts with an increment of T, seconds)
 //   force_scale S         (what ccx makes of a *CLOAD value: 1/180 in an axisymmetric model)
+//   linear 0|1            (1: no NLGEOM, no nonlinear material: one Newton iteration suffices)
 //   pressure_faces N OFFSET then N lines "element face" (input pressure, *DLOAD P<face>;
 //                         OFFSET 2 for plane elements, whose faces ccx numbers from 3)
 //   force_nodes N DOFS    then N lines "node"           (input force, *CLOAD dofs 1..DOFS)
@@ -53,8 +54,9 @@ constexpr const char* kInterfaceFile = "cocopp_interface.txt";
 
 struct InterfaceLists {
   bool ramp = true;  ///< loads ramp over a coupling step (ccx's static default) or jump
-  double initial_increment = 0.0;                   ///< of each coupler time step (step time)
-  double force_scale = 1.0;                         ///< ccx's reading of a *CLOAD value (cloads.f)
+  double initial_increment = 0.0;  ///< of each coupler time step (step time)
+  double force_scale = 1.0;        ///< ccx's reading of a *CLOAD value (cloads.f)
+  int linear = 0;                  ///< a linear model: ccx may stop at its first Newton iteration
   std::vector<std::pair<int, int>> pressure_faces;  ///< element, face 1..6
   int face_offset = 0;  ///< ccx numbers a plane element's faces as its 3D expansion's: +2
   std::vector<int> force_nodes;
@@ -79,6 +81,8 @@ InterfaceLists read_interface(const std::string& file) {
   in >> lists.initial_increment;
   expect("force_scale");
   in >> lists.force_scale;
+  expect("linear");
+  in >> lists.linear;
   expect("pressure_faces");
   in >> count >> lists.face_offset;
   lists.pressure_faces.resize(count);
@@ -518,10 +522,11 @@ void* run_ccx(void*) {
 }
 
 struct cocopp_ccx_hooks hooks {
-  hook_increment_start, hook_apply_loads, hook_increment_end
+  hook_increment_start, hook_apply_loads, hook_increment_end, 0
 };
 
 void CoupledCcx::start_ccx() {
+  hooks.linear = lists_.linear;
   ::cocopp_ccx_hooks = &hooks;
   pthread_attr_t attributes;
   pthread_attr_init(&attributes);
