@@ -350,15 +350,21 @@ struct DynamicSeries {
   }
 };
 
-DynamicSeries dynamic_series(const std::string& keys) {
+/// The steel cylinder of the dynamic tests, its breathing mode about 9 steps of 2e-6 s long.
+SectorCylinder breathing_cylinder(const std::string& element_type) {
   SectorCylinder cylinder;
   cylinder.radial = 4;
-  cylinder.element_type = "C3D20";
+  cylinder.element_type = element_type;
   cylinder.density = 7850.0;
   cylinder.step_options = ", AMPLITUDE=RAMP";
   cylinder.procedure = "*DYNAMIC, DIRECT, ALPHA=0";
-  const double delta_t = 2e-6;  // about 9 steps per period of the breathing mode
   cylinder.increments = "2e-06, 2e-06";
+  return cylinder;
+}
+
+DynamicSeries dynamic_series(const std::string& keys) {
+  const SectorCylinder cylinder = breathing_cylinder("C3D20");
+  const double delta_t = 2e-6;
   std::vector<double> pressures;
   for (int k = 1; k <= 40; ++k)
     pressures.push_back(1e8 * (0.5 + std::sin(0.4 * k) + 0.3 * std::cos(1.3 * k)));
@@ -447,14 +453,8 @@ TEST(CoupledCcx, RestartReplaysTheCommittedSteps) {
 // static answer (an undamped step response), and equal to one uninterrupted ccx run of the same
 // 2000 increments.
 TEST(CoupledCcx, TwoThousandDynamicStepsStayBoundedAndEqualOneRun) {
-  SectorCylinder cylinder;
-  cylinder.radial = 4;
-  cylinder.element_type = "C3D20R";
-  cylinder.density = 7850.0;
-  cylinder.step_options = ", AMPLITUDE=RAMP";
-  cylinder.procedure = "*DYNAMIC, DIRECT, ALPHA=0";
+  const SectorCylinder cylinder = breathing_cylinder("C3D20R");
   const double delta_t = 2e-6;
-  cylinder.increments = "2e-06, 2e-06";
   const int steps = 2000;
   const double p = 1e8;
   CalculixCase test(delta_t, steps);
