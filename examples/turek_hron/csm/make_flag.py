@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Write the Turek-Hron CSM tests' flag as a CalculiX deck (docs/validation-turek-hron-csm.md).
 
-    make_flag.py csm1|csm3 [--nx 40] [--ny 4] [--dt 0.005] [--output flag.inp]
+    make_flag.py csm1|csm2|csm3 [--nx 40] [--ny 4] [--dt 0.005] [--output flag.inp]
 
 The elastic flag of the Turek-Hron benchmark (S. Turek, J. Hron, "Proposal for numerical
 benchmarking of fluid-structure interaction between an elastic object and laminar
@@ -9,8 +9,9 @@ incompressible flow", in: Fluid-Structure Interaction, LNCSE 53, Springer 2006, 
 0.35 x 0.02 m behind the cylinder of radius 0.05 m centred at (0.2, 0.2), clamped where it
 meets the cylinder (the left edge follows the circle), its tip centre A at (0.6, 0.2);
 St. Venant-Kirchhoff (linear elastic with NLGEOM), rho 1000 kg/m3, nu 0.4, mu 0.5e6 Pa
-(E = 1.4e6 Pa), under gravity 2 m/s2 in -y; plane strain (CPE8, thickness 1 m).
-csm1: static (steady state); csm3: dynamic from rest (*DYNAMIC, ALPHA=0, time step dt).
+(E = 1.4e6 Pa; csm2: mu 2.0e6 Pa, E = 5.6e6 Pa), under gravity 2 m/s2 in -y; plane strain
+(CPE8, thickness 1 m). csm1, csm2: static (steady state); csm3: dynamic from rest (*DYNAMIC,
+ALPHA=0, time step dt).
 Sets for the calculix wrapper: TOP (the upper edge's faces) and POINTA (the tip node A).
 """
 import argparse
@@ -18,7 +19,8 @@ import math
 
 CENTRE, RADIUS = (0.2, 0.2), 0.05
 LENGTH_END, HALF_THICKNESS = 0.6, 0.01
-RHO, NU, MU, GRAVITY = 1000.0, 0.4, 0.5e6, 2.0
+RHO, NU, GRAVITY = 1000.0, 0.4, 2.0
+SHEAR_MODULUS = {"csm1": 0.5e6, "csm2": 2.0e6, "csm3": 0.5e6}
 
 
 def node_grid(nx, ny):
@@ -60,10 +62,11 @@ def deck(case, nx, ny, dt):
     lines.append("*SURFACE, NAME=TOP, TYPE=ELEMENT")
     lines += [f"{e}, S3" for e in top]
     lines += ["*BOUNDARY", "CLAMPED, 1, 2",
-              "*MATERIAL, NAME=FLAG", "*ELASTIC", f"{2 * MU * (1 + NU):.13g}, {NU}",
+              "*MATERIAL, NAME=FLAG", "*ELASTIC",
+              f"{2 * SHEAR_MODULUS[case] * (1 + NU):.13g}, {NU}",
               "*DENSITY", f"{RHO}",
               "*SOLID SECTION, ELSET=FLAG, MATERIAL=FLAG", "1."]
-    if case == "csm1":
+    if case in ("csm1", "csm2"):
         lines += ["*STEP, NLGEOM, INC=1000", "*STATIC", "0.1, 1.0, 1e-5, 0.1"]
     else:
         lines += ["*STEP, NLGEOM, INC=1000", "*DYNAMIC, DIRECT, ALPHA=0", f"{dt}, {dt}"]
@@ -74,7 +77,7 @@ def deck(case, nx, ny, dt):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("case", choices=["csm1", "csm3"])
+    parser.add_argument("case", choices=["csm1", "csm2", "csm3"])
     parser.add_argument("--nx", type=int, default=40, help="elements along the flag")
     parser.add_argument("--ny", type=int, default=4, help="elements through its thickness")
     parser.add_argument("--dt", type=float, default=0.005, help="csm3: the time step (s)")

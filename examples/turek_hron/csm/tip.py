@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The flag's tip A in a CSM run's results against Turek & Hron (2006):
-    tip.py csm1|csm3 results/case.h5
-CSM1: u(A) after the step; CSM3: mean, amplitude and frequency of u_y(A) over its last two
+    tip.py csm1|csm2|csm3 results/case.h5
+CSM1, CSM2: u(A) after the step; CSM3: mean, amplitude and frequency of u_y(A) over its last two
 periods (from its maxima; u_x's mean and amplitude between the same times)."""
 import sys
 
@@ -9,6 +9,7 @@ import h5py
 import numpy as np
 
 REFERENCE = {"csm1": {"ux": -7.187e-3, "uy": -66.10e-3},
+             "csm2": {"ux": -0.4690e-3, "uy": -16.97e-3},
              "csm3": {"uy mean": -63.607e-3, "uy amplitude": 65.160e-3, "frequency": 1.0995,
                       "ux mean": -14.305e-3, "ux amplitude": 14.305e-3}}
 
@@ -34,7 +35,7 @@ def maxima(times, values):
 def main():
     test, path = sys.argv[1], sys.argv[2]
     times, ux, uy = tip_history(path)
-    if test == "csm1":
+    if test in ("csm1", "csm2"):
         values = {"ux": ux[-1], "uy": uy[-1]}
     else:
         peaks = maxima(times, uy)
