@@ -26,6 +26,7 @@
 #include <cmath>
 #include <condition_variable>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iostream>
@@ -200,6 +201,7 @@ class CoupledCcx : public cocopp::sdk::Solver {
       if (!ccx_done_) post(lock, Request::kStop, {});
     }
     if (ccx_started_) pthread_join(ccx_thread_, nullptr);
+    ccx_started_ = false;
     // For the benchmark (bench_calculix_persistent) and the curious: what the hand-over costs.
     if (solves_ > 0)
       std::printf(
@@ -283,6 +285,8 @@ class CoupledCcx : public cocopp::sdk::Solver {
   }
 
   const std::vector<std::string>& ccx_arguments() const { return ccx_arguments_; }
+  /// Whether ccx's thread still runs (it waits in a hook after an error the coupler was told).
+  bool ccx_running() const { return ccx_started_; }
 
  private:
   enum class Request { kNone, kSolve, kCommit, kStop };
@@ -564,5 +568,10 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) ccx_arguments.emplace_back(argv[i]);
   CoupledCcx solver(ccx_arguments);
   the_solver = &solver;
-  return cocopp::sdk::serve(solver, argc, argv);
+  const int status = cocopp::sdk::serve(solver, argc, argv);
+  // After an error ccx's thread may still wait in a hook on the solver's mutex: end the process
+  // without destroying what it waits on.
+  std::fflush(stdout);
+  if (solver.ccx_running()) std::_Exit(status);
+  return status;
 }
