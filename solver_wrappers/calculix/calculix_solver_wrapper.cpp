@@ -152,8 +152,7 @@ CalculixSolverWrapper::CalculixSolverWrapper(const Settings& settings, const Run
       settings.fail("surface_stiffness",
                     "give the structure's stiffness per area against a push of its surface, "
                     "in Pa/m (about its Young's modulus over the faces' length), > 0");
-    if (std::find(input_variables_.begin(), input_variables_.end(), "pressure") ==
-        input_variables_.end())
+    if (!takes("pressure"))
       settings.fail("input_variables",
                     "interface_drive: displacement balances the other solver's pressure: "
                     "include pressure");
@@ -174,7 +173,6 @@ CalculixSolverWrapper::CalculixSolverWrapper(const Settings& settings, const Run
   read_mode(settings);
 }
 
-// mode: persistent keeps one ccx for the run; what it cannot do is refused here, by key.
 bool CalculixSolverWrapper::has_coupled_executable() const {
   try {
     find_executable(coupled_executable_, working_directory_);
@@ -202,6 +200,7 @@ void CalculixSolverWrapper::choose_auto_mode() {
   }
 }
 
+// mode: persistent keeps one ccx for the run; what it cannot do is refused here, by key.
 void CalculixSolverWrapper::read_mode(const Settings& settings) {
   const std::string mode =
       settings.get_choice("mode", "auto", {"auto", "per_iteration", "persistent"});
@@ -209,9 +208,9 @@ void CalculixSolverWrapper::read_mode(const Settings& settings) {
   coupled_executable_ =
       settings.get<std::string>("coupled_executable", default_coupled_executable());
   if (mode == "auto") {
-    // Persistent where cocopp-ccx is built and no key asks for a ccx run per iteration (a
-    // ccx executable of the user's among them); the
-    // deck and a restart's data may still say otherwise (choose_auto_mode).
+    // Persistent where cocopp-ccx is built and no key asks for a ccx run per iteration (a ccx
+    // executable of the user's among them); the deck and a restart's data may still say
+    // otherwise (choose_auto_mode).
     auto_mode_ = true;
     persistent_ = !settings.has("state_reset") && !settings.has("initial_increment") &&
                   !settings.has("executable") && !displacement_drive_ && has_coupled_executable();
@@ -285,8 +284,10 @@ void CalculixSolverWrapper::initialize() {
   check();
   read_deck();
   choose_auto_mode();
-  if (!persistent_) ccx_path_ = find_executable(executable_, working_directory_);
-  if (!persistent_) choose_state_reset();
+  if (!persistent_) {
+    ccx_path_ = find_executable(executable_, working_directory_);
+    choose_state_reset();
+  }
   build_interfaces();
   // The model definition once; every first-step iteration includes it.
   std::ofstream model(file(kModelFile));
@@ -485,15 +486,14 @@ void CalculixSolverWrapper::start_persistent() {
         fmt::format("{}: solver '{}': mode: persistent cannot run {}: {}; use mode: "
                     "per_iteration",
                     mode_where_, name_, input_file_, why));
-  const bool pressure = std::find(input_variables_.begin(), input_variables_.end(), "pressure") !=
-                        input_variables_.end();
+
   calculix::PersistentCcx::Options options{name_,
                                            find_executable(coupled_executable_, working_directory_),
                                            working_directory_,
                                            log_file_,
                                            threads_,
                                            timeout_,
-                                           pressure};
+                                           takes("pressure")};
   persistent_ccx_ = std::make_unique<calculix::PersistentCcx>(options, *deck_, *loads_,
                                                               interface_nodes_, kModelFile);
   persistent_ccx_->start(run_, persistent_end_time());
@@ -543,24 +543,8 @@ double CalculixSolverWrapper::persistent_end_time() const {
   return steps * run_.delta_t;
 }
 
-RunSettings CalculixSolverWrapper::run_from_start() const {
-  RunSettings run = run_;
-  run.timestep_start = 0;
-  return run;
-}
-
 RowMatrix CalculixSolverWrapper::solve_persistent(const Interface& input) {
-  Eigen::VectorXd pressure;
-  RowMatrix traction;
-  if (std::find(input_variables_.begin(), input_variables_.end(), "pressure") !=
-      input_variables_.end())
-    pressure = input.values(surface_name_, "pressure").col(0);
-  if (std::find(input_variables_.begin(), input_variables_.end(), "traction") !=
-      input_variables_.end())
-    traction = input.values(surface_name_, "traction");
-  if (!pressure.allFinite() || !traction.allFinite())
-    fail(fmt::format("solver '{}' at {}: the interface loads contain NaN or infinity", name_,
-                     position()));
+  const auto [pressure, traction] = face_loads(input);
   return persistent_ccx_->solve(pressure, traction.size() > 0
                                               ? loads_->nodal_forces(traction)
                                               : std::map<std::int64_t, Eigen::Vector3d>{});
@@ -589,7 +573,7 @@ void CalculixSolverWrapper::restart_persistent() {
   const auto inputs = committed_inputs_;
   persistent_ccx_->finalize();
   loads_->move_faces({});  // the deck's geometry: the replay moves the faces again
-  persistent_ccx_->start(run_from_start(), persistent_end_time());
+  persistent_ccx_->start(run_, persistent_end_time());
   replay(times, inputs);
   initialize_step(step, time);  // the step that did not converge, ready for another input
   iteration_ = iteration;
@@ -673,18 +657,23 @@ const Interface& CalculixSolverWrapper::solve(const Interface& input) {
   return output_interface_;
 }
 
-void CalculixSolverWrapper::write_loads(const Interface& input) const {
-  const auto has = [&](const char* variable) {
-    return std::find(input_variables_.begin(), input_variables_.end(), variable) !=
-           input_variables_.end();
-  };
-  Eigen::VectorXd pressure;
-  RowMatrix traction;
-  if (has("pressure")) pressure = input.values(surface_name_, "pressure").col(0);
-  if (has("traction")) traction = input.values(surface_name_, "traction");
-  if (!pressure.allFinite() || !traction.allFinite())
+bool CalculixSolverWrapper::takes(const char* variable) const {
+  return std::find(input_variables_.begin(), input_variables_.end(), variable) !=
+         input_variables_.end();
+}
+
+CalculixSolverWrapper::FaceLoads CalculixSolverWrapper::face_loads(const Interface& input) const {
+  FaceLoads loads;
+  if (takes("pressure")) loads.pressure = input.values(surface_name_, "pressure").col(0);
+  if (takes("traction")) loads.traction = input.values(surface_name_, "traction");
+  if (!loads.pressure.allFinite() || !loads.traction.allFinite())
     fail(fmt::format("solver '{}' at {}: the interface loads contain NaN or infinity", name_,
                      position()));
+  return loads;
+}
+
+void CalculixSolverWrapper::write_loads(const Interface& input) const {
+  const auto [pressure, traction] = face_loads(input);
   if (!drive_) {
     loads_->write(file(kLoadsFile), pressure, traction);
     return;

@@ -99,6 +99,14 @@ class CalculixSolverWrapper : public SolverWrapper {
   void build_interfaces();
   void write_iteration_deck() const;
   void write_step(std::ofstream& out, const std::string& loads_file, bool print) const;
+  /// Whether the case's input_variables hold `variable` ("pressure", "traction").
+  bool takes(const char* variable) const;
+  struct FaceLoads {
+    Eigen::VectorXd pressure;  ///< per face; empty if pressure is no input
+    RowMatrix traction;        ///< per face; empty if traction is no input
+  };
+  /// The loads of `input` on the faces; a NaN or infinity stops the run, naming the position.
+  FaceLoads face_loads(const Interface& input) const;
   void write_loads(const Interface& input) const;
   void run_ccx();
   void start_persistent();
@@ -106,7 +114,6 @@ class CalculixSolverWrapper : public SolverWrapper {
   void replay(const std::vector<double>& times, const std::vector<Eigen::VectorXd>& inputs);
   void restart_persistent();
   double persistent_end_time() const;
-  RunSettings run_from_start() const;
   SolverRejectedInput not_converged(const std::string& exit, const std::string& deck,
                                     const std::string& log_tail) const;
   RowMatrix solve_persistent(const Interface& input);

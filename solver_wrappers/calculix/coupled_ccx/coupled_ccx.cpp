@@ -235,14 +235,13 @@ class CoupledCcx : public cocopp::sdk::Solver {
     return COCOPP_CCX_CONTINUE;
   }
 
-  void apply_loads(const cocopp_ccx_increment& inc, cocopp_ccx_loads& loads) {
+  void apply_loads(cocopp_ccx_loads& loads) {
     if (!in_step_) return;  // ccx's loads before the first step: the placeholders' zeros
     if (force_entries_.empty() && pressure_entries_.empty()) find_entries(loads);
     const double span = step_end_theta_ - step_start_theta_;
     const double fraction = lists_.ramp && span > 0
                                 ? std::clamp((loads.reltime - step_start_theta_) / span, 0., 1.)
                                 : 1.0;
-    (void)inc;
     for (std::size_t i = 0; i < pressure_entries_.size(); ++i)
       loads.xloadact[2 * pressure_entries_[i]] =
           committed_[i] + fraction * (target_[i] - committed_[i]);
@@ -507,8 +506,8 @@ extern "C" {
 cocopp_ccx_action hook_increment_start(cocopp_ccx_increment* inc) {
   return timed([&] { return the_solver->increment_start(*inc); });
 }
-void hook_apply_loads(cocopp_ccx_increment* inc, cocopp_ccx_loads* loads) {
-  timed([&] { the_solver->apply_loads(*inc, *loads); });
+void hook_apply_loads(cocopp_ccx_increment* /*inc*/, cocopp_ccx_loads* loads) {
+  timed([&] { the_solver->apply_loads(*loads); });
 }
 cocopp_ccx_action hook_increment_end(cocopp_ccx_increment* inc) {
   return timed([&] { return the_solver->increment_end(*inc); });
