@@ -72,16 +72,19 @@ bool gave_up(const std::string& log_text) {
          log_text.find("max. # of increments reached") != std::string::npos;
 }
 
+std::vector<std::pair<std::string, std::string>> ccx_thread_environment(int threads) {
+  const std::string count = std::to_string(threads);
+  return {{"OMP_NUM_THREADS", count},
+          {"CCX_NPROC_EQUATION_SOLVER", count},
+          {"CCX_NPROC_RESULTS", count},
+          {"CCX_NPROC_STIFFNESS", count}};
+}
+
 CcxRunResult run_ccx(const CcxRunOptions& options) {
   ChildOptions child_options;
   child_options.command = {options.executable.string(), "-i", options.job};
   child_options.working_directory = options.working_directory;
-  const std::string threads = std::to_string(options.threads);
-  // ccx's equation solver (SPOOLES/PaStiX) and its element loops read these.
-  child_options.environment = {{"OMP_NUM_THREADS", threads},
-                               {"CCX_NPROC_EQUATION_SOLVER", threads},
-                               {"CCX_NPROC_RESULTS", threads},
-                               {"CCX_NPROC_STIFFNESS", threads}};
+  child_options.environment = ccx_thread_environment(options.threads);
   child_options.log_file = options.log_file;
   child_options.truncate_log = true;  // the log holds the last run: the one to explain
 

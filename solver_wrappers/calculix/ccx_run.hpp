@@ -5,6 +5,8 @@
 // are a rejected deck (quoted); anything else (a crash, another exit code) quotes the log tail.
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace cocopp::calculix {
 
@@ -27,6 +29,10 @@ struct CcxRunResult {
   std::string details;
   double seconds = 0.0;  ///< wall-clock time of the run
 };
+
+/// The environment that gives ccx `threads` threads: its equation solver (SPOOLES/PaStiX) and
+/// its element loops read these.
+std::vector<std::pair<std::string, std::string>> ccx_thread_environment(int threads);
 
 /// Run ccx and wait for it; never throws for a failure of ccx itself (see the status), but
 /// throws std::runtime_error if it cannot be started.

@@ -9,6 +9,7 @@
 #include <set>
 
 #include "core/case/settings.hpp"
+#include "solver_wrappers/calculix/ccx_run.hpp"
 #include "solver_wrappers/process/process_solver_wrapper.hpp"
 #include "solver_wrappers/solver_error.hpp"
 
@@ -87,19 +88,12 @@ void PersistentCcx::start(const RunSettings& run, double end_time) {
   run_ = run;
   write_deck(end_time);
   write_interface();
-  const std::string threads = std::to_string(options_.threads);
-  DefaultCommand command{options_.executable,
-                         "",
-                         {"-i", kJob},
-                         {{"OMP_NUM_THREADS", threads},
-                          {"CCX_NPROC_EQUATION_SOLVER", threads},
-                          {"CCX_NPROC_RESULTS", threads},
-                          {"CCX_NPROC_STIFFNESS", threads},
-                          // ccx's Fortran writes unbuffered: in the log in order with its C
-                          // output (cocopp-ccx makes stdout line-buffered), so that its last
-                          // lines say why it stopped; in the .dat file as each step commits.
-                          {"GFORTRAN_UNBUFFERED_ALL", "y"}},
-                         nullptr};
+  DefaultCommand command{
+      options_.executable, "", {"-i", kJob}, ccx_thread_environment(options_.threads), nullptr};
+  // ccx's Fortran writes unbuffered: in the log in order with its C output (cocopp-ccx makes
+  // stdout line-buffered), so that its last lines say why it stopped; in the .dat file as each
+  // step commits.
+  command.environment.emplace_back("GFORTRAN_UNBUFFERED_ALL", "y");
   const Settings settings = Settings::load_string(
       fmt::format("type: process\nname: '{}'\nworking_directory: '{}'\ntimeout: {}\n"
                   "log_file: '{}'\n",
