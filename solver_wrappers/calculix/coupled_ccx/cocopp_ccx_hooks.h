@@ -50,6 +50,10 @@ struct cocopp_ccx_increment {
   double **vold, **veold, **accold, **f, **fext, **fnext, **cv, **sti, **eme, **ener, **xstate,
       **xbounact, **t1act;
   double *allwk, *dampwk, *energy /* [4] */, *qam /* [2] */;
+  /* ccx's mean force and energy of the step (the convergence check's scale) are running means
+   * over its converged increments, jnz of them: a coupling iteration starts them afresh */
+  int* jnz;
+  double* energym;
 };
 
 struct cocopp_ccx_loads {
