@@ -198,6 +198,10 @@ void ResultsWriter::mark_continued(int step) {
   set_string(root, "status", "running");
   set_string(root, "message", "");
   set_int(root, "restarted_after_step", step);
+  // The step the continued run stopped in lies after the saved state: this run computes it
+  // again, and may stop in a step of its own.
+  if (checked(H5Lexists(root, "unfinished_step", H5P_DEFAULT), "looking for unfinished_step") > 0)
+    checked(H5Ldelete(root, "unfinished_step", H5P_DEFAULT), "removing the old unfinished_step");
 }
 
 std::vector<ResultsWriter::BlockSeries> ResultsWriter::open_interface(const char* name,

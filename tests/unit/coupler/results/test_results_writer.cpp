@@ -329,6 +329,35 @@ TEST_F(ResultsWriterTest, ContinuesAFileAfterAStepAndDropsTheRowsAfterIt) {
   }
 }
 
+// A run that stopped in step 5 is continued after step 3 and stops in a step of its own: the
+// file then says where the continued run stopped, not the first run's step.
+TEST_F(ResultsWriterTest, AContinuedRunReplacesTheUnfinishedStepOfTheRunItContinues) {
+  const auto file = dir_ / "run.h5";
+  Interfaces interfaces = make_interfaces();
+  {
+    ResultsWriter writer(file, make_run(5), interfaces.x, interfaces.y);
+    for (int step = 1; step <= 4; ++step) {
+      fill(interfaces, step);
+      writer.write_step(make_record(step), interfaces.x, interfaces.y);
+    }
+    writer.write_unfinished_step(5, 0.5, {1.0, 2.0});
+    writer.close("diverged", "step 5");
+  }
+  {
+    ResultsWriter writer(file, make_run(8), interfaces.x, interfaces.y, 3);
+    for (int step = 4; step <= 6; ++step) {
+      fill(interfaces, 10 * step);
+      writer.write_step(make_record(step), interfaces.x, interfaces.y);
+    }
+    writer.write_unfinished_step(7, 0.7, {3.0});
+    writer.close("diverged", "step 7");
+  }
+  const ResultsReader f(file);
+  EXPECT_EQ(f.steps(), (std::vector<int>{1, 2, 3, 4, 5, 6}));
+  EXPECT_EQ(f.number("unfinished_step", "step"), 7);
+  EXPECT_EQ(f.dataset("unfinished_step/residual_norms").values, (std::vector<double>{3.0}));
+}
+
 TEST_F(ResultsWriterTest, ContinuingAFileThatDoesNotFitSaysWhy) {
   const auto file = dir_ / "run.h5";
   write_run(file, 3);
