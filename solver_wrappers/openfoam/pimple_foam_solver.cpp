@@ -62,7 +62,7 @@ sdk::InterfaceDescription PimpleFoamSolver::initialize(const sdk::RunInfo& run) 
 }
 
 void PimpleFoamSolver::create_case(const sdk::RunInfo& run) {
-  run_time_.reset(new Time(Time::controlDictName, args_));
+  run_time_.reset(new CoupledTime(Time::controlDictName, args_));
   Time& runTime = *run_time_;
   start_at_coupler_step(run);
   Info << "Create mesh for time = " << runTime.timeName() << nl << endl;
@@ -120,7 +120,7 @@ void PimpleFoamSolver::create_case(const sdk::RunInfo& run) {
 
 void PimpleFoamSolver::start_at_coupler_step(const sdk::RunInfo& run) {
   // The coupler's start step picks the time directory (a restart), whatever startFrom says.
-  Time& runTime = *run_time_;
+  CoupledTime& runTime = *run_time_;
   const scalar start = run.timestep_start * run.delta_t;
   const instant closest = runTime.findClosestTime(start);
   if (std::abs(closest.value() - start) > 1e-6 * run.delta_t)
@@ -130,7 +130,7 @@ void PimpleFoamSolver::start_at_coupler_step(const sdk::RunInfo& run) {
   if (closest.value() != runTime.value() || run.timestep_start != runTime.timeIndex()) {
     Info << "Starting at time " << closest.name() << ", the coupler's step " << run.timestep_start
          << nl << endl;
-    runTime.setTime(closest, run.timestep_start);
+    runTime.start_at(closest, run.timestep_start);
   }
 }
 

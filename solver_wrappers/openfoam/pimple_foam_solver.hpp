@@ -71,6 +71,19 @@ class RestartablePimpleControl : public Foam::pimpleControl {
   bool criteriaSatisfied() override;
 };
 
+/// OpenFOAM's Time that a restart can start at another time than controlDict's startTime, as
+/// if the run had been started there: function objects then write their files under that time
+/// (postProcessing/<name>/<time>/), not over the first run's.
+class CoupledTime : public Foam::Time {
+ public:
+  using Foam::Time::Time;
+  void start_at(const Foam::instant& time, Foam::label index) {
+    setTime(time, index);
+    startTime_ = time.value();
+    startTimeIndex_ = index;
+  }
+};
+
 class PimpleFoamSolver : public sdk::Solver {
  public:
   /// `gap_patch`: if not empty, the interface faces also output their gap to this patch and
@@ -133,7 +146,7 @@ class PimpleFoamSolver : public sdk::Solver {
   std::vector<PatchNumbering> numbering_;  ///< per patch: the coupler's order
   double rho_ = 0.0;
 
-  Foam::autoPtr<Foam::Time> run_time_;
+  Foam::autoPtr<CoupledTime> run_time_;
   Foam::autoPtr<Foam::dynamicFvMesh> mesh_;
   Foam::autoPtr<RestartablePimpleControl> pimple_;
   Foam::autoPtr<Foam::volScalarField> p_;

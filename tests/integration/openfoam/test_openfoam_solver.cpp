@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <regex>
 
 #include "solver_wrappers/process/process_solver_wrapper.hpp"
@@ -308,6 +309,40 @@ TEST_F(OpenFoamSolverTest, ARestartFromAWrittenTimeContinuesTheRun) {
     EXPECT_NE(std::string(e.what()).find("no time directory for it"), std::string::npos)
         << e.what();
   }
+}
+
+// A restarted run's function objects write their files under the time it starts at, as
+// OpenFOAM's own solvers do, not over the first run's: forces of steps 1-2, then of step 3.
+TEST_F(OpenFoamSolverTest, ARestartedRunsFunctionObjectsWriteUnderItsStartTime) {
+  make_case(directory_ / "fluid");
+  std::ofstream(directory_ / "fluid/system/controlDict", std::ios::app)
+      << "functions { forces { type forces; libs (\"libforces.so\"); patches (wall); "
+         "rho rhoInf; rhoInf 1000; CofR (0 0 0); writeControl timeStep; writeInterval 1; } }\n";
+  const auto zero = [](auto&) { return Eigen::Vector3d::Zero(); };
+  auto run_steps = [&](int from, int to) {
+    SolverWrapper& fluid = start();
+    for (int step = from; step <= to; ++step) {
+      fluid.initialize_step(step, step * kDeltaT);
+      fluid.solve(displacement(zero));
+      fluid.finalize_step();
+    }
+    fluid.finalize();
+  };
+  run_steps(1, 2);
+  run_.timestep_start = 2;
+  run_steps(3, 3);
+  const auto times = [](const std::filesystem::path& file) {
+    std::vector<std::string> found;
+    std::ifstream in(file);
+    for (std::string line; std::getline(in, line);)
+      if (!line.empty() && line[0] != '#')
+        found.push_back(line.substr(0, line.find_first_of(" \t")));
+    return found;
+  };
+  const auto forces = directory_ / "fluid/postProcessing/forces";
+  EXPECT_EQ(times(forces / "0/force.dat"), (std::vector<std::string>{"0.001", "0.002"}));
+  EXPECT_EQ(times(forces / "0.002/force.dat"), (std::vector<std::string>{"0.003"}));
+  EXPECT_FALSE(std::filesystem::exists(forces / "0/force_0.dat"));
 }
 
 TEST_F(OpenFoamSolverTest, SerialAndTwoRanksGiveTheSameCoupledResults) {
