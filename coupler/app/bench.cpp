@@ -19,8 +19,8 @@ namespace cocopp {
 namespace {
 
 /// Run every case in turn; returns false if the bench has to stop (interrupt, no reference).
-bool run_all(const std::vector<PlannedRun>& runs, std::vector<BenchRow>& rows,
-             const BenchOptions& options) {
+bool run_all(const BenchFile& bench, const std::vector<PlannedRun>& runs,
+             std::vector<BenchRow>& rows, const BenchOptions& options) {
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const std::string name = run_label(runs[i].case_name, runs[i].name);
     if (options.quiet)
@@ -32,6 +32,7 @@ bool run_all(const std::vector<PlannedRun>& runs, std::vector<BenchRow>& rows,
     RunOptions run_options;
     run_options.quiet = true;
     run_options.silent = options.quiet;
+    run_options.restart = run_options.fresh_coupling = bench.start_from_state;
     const RunReport report = run_case(runs[i].case_file, run_options);
     BenchRow row = make_row(runs[i], report);
     if (options.quiet)
@@ -68,7 +69,7 @@ int run_bench(const fs::path& bench_file, const BenchOptions& options) {
     return 2;
   }
   std::vector<BenchRow> rows;
-  const bool finished = run_all(runs, rows, options);
+  const bool finished = run_all(bench, runs, rows, options);
   compare_with_references(bench, runs, rows);
   print_table(rows);
   const nlohmann::json reference = describe_references(bench);

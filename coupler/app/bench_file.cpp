@@ -118,6 +118,7 @@ BenchFile read_bench_file(const fs::path& file) {
     root.fail("base_case", "no such file: " + b.base_case.string());
   b.output_directory = dir / root.get<std::string>("output_directory", "results/bench");
   read_reference(root, b);
+  b.start_from_state = root.get<bool>("start_from_state", false);
   b.changes = read_changes(root);
   std::set<std::string> names;
   for (const Settings& v : root.list("variants")) b.variants.push_back(read_variant(v, names));

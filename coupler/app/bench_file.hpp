@@ -46,6 +46,9 @@ struct BenchFile {
   Changes changes;                 ///< applied to every run, the references included
   std::vector<BenchCase> cases;
   std::vector<Variant> variants;
+  /// Every run continues the base case's saved state (results/case.state.h5) with its own
+  /// coupled solver (cocopp run --restart --fresh-coupling): a window of a long run.
+  bool start_from_state = false;
 };
 
 /// Read and check a bench file; throws CaseError naming the file, line and key.

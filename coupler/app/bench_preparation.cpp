@@ -65,7 +65,7 @@ std::vector<fs::path> paths_not_to_copy(const BenchFile& bench, const YAML::Node
   std::string results = "results";
   if (base_case["settings"] && base_case["settings"]["results_directory"])
     results = base_case["settings"]["results_directory"].as<std::string>();
-  add(base_dir / results);
+  if (!bench.start_from_state) add(base_dir / results);  // else the state every run continues
   for (const fs::path& w : working_directories(base_case)) add(base_dir / w / "output");
   add(bench.output_directory);  // an output directory inside the base case's directory
   return skip;
@@ -121,9 +121,33 @@ PlannedRun prepare_run(const BenchFile& bench, const YAML::Node& base_case,
 
 }  // namespace
 
+/// start_from_state: every run continues the base case's state, in the results location
+/// every bench run has (results/case).
+void check_saved_state(const YAML::Node& base_case, const BenchFile& bench) {
+  const YAML::Node settings = base_case["settings"];
+  const auto setting = [&](const char* key, const std::string& fallback) {
+    return settings && settings[key] ? settings[key].as<std::string>() : fallback;
+  };
+  const std::string directory = setting("results_directory", "results");
+  const std::string name = setting("results_name", "case");
+  if (fs::path(directory).lexically_normal() != fs::path("results") || name != "case")
+    throw CaseError(fmt::format(
+        "{}: start_from_state: the base case writes its results as {}/{}; the bench's runs "
+        "continue them as results/case: run the base case with the default results_directory "
+        "and results_name",
+        bench.file.string(), directory, name));
+  const fs::path state = bench.base_case.parent_path() / "results/case.state.h5";
+  if (!fs::is_regular_file(state))
+    throw CaseError(
+        fmt::format("{}: start_from_state: no saved state {} (run the base case "
+                    "first; it saves one at its end and every state_interval steps)",
+                    bench.file.string(), state.string()));
+}
+
 std::vector<PlannedRun> prepare_runs(const BenchFile& bench) {
   const YAML::Node base = YAML::LoadFile(bench.base_case.string());
   check_working_directories(base, bench.base_case);
+  if (bench.start_from_state) check_saved_state(base, bench);
   std::vector<PlannedRun> runs;
   for (const BenchCase& c : bench.cases) {
     if (bench.reference == ReferenceKind::kComputed)

@@ -39,6 +39,11 @@ int main(int argc, char** argv) {
                 "written at the end of a run and every settings.state_interval steps) up to the "
                 "case's end: the solvers restart from what they saved with it, the results file "
                 "is continued after the saved step (docs/results.md)");
+  run->add_flag("--fresh-coupling", options.fresh_coupling,
+                "with --restart: the coupled solver's own memory (secant columns, Aitken's "
+                "factor, scaling) starts afresh and only the predictor's history is taken, so "
+                "that another coupled solver can continue the run")
+      ->needs("--restart");
 
   auto* check = app.add_subcommand(
       "check",

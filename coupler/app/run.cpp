@@ -162,7 +162,7 @@ class Run {
                                                         case_.watchpoints.layout(), continue_after);
     }
     if (case_.restart) {
-      coupled.load_state(case_.restart->state);
+      coupled.load_state(case_.restart->state, !options.fresh_coupling);
       writer_ = std::make_unique<ResultsWriter>(results_path(".h5"), describe_run(case_),
                                                 coupled.x(), coupled.y(), case_.restart->step,
                                                 case_.watchpoints.layout());

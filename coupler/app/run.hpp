@@ -15,6 +15,9 @@ struct RunOptions {
   bool silent = false;
   bool verbose = false;  ///< also one line per coupling iteration
   bool restart = false;  ///< continue from the saved state (load_case's `restart`)
+  /// With restart: the coupled solver's own memory starts afresh (only the predictor's history
+  /// is taken), so that a run can be continued with another coupled solver.
+  bool fresh_coupling = false;
 };
 
 /// What a run of a case gives its caller (the command, cocopp bench): how it ended and its

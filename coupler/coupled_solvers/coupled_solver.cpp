@@ -299,7 +299,7 @@ void CoupledSolver::save_state(State& state) const {
   save_own_state(state);
 }
 
-void CoupledSolver::load_state(const State& state) {
+void CoupledSolver::load_state(const State& state, bool own) {
   const Eigen::MatrixXd& columns = state.group("predictor").matrix("history");
   if (columns.rows() != x_.size() || columns.cols() == 0)
     throw std::runtime_error(fmt::format(
@@ -313,7 +313,7 @@ void CoupledSolver::load_state(const State& state) {
   // (State files written before it was saved lack it: the growth check is then strict.)
   if (state.has("largest_first_residual"))
     largest_first_residual_ = state.scalar("largest_first_residual");
-  load_own_state(state);
+  if (own) load_own_state(state);
 }
 
 std::string CoupledSolver::divergence_advice() const {

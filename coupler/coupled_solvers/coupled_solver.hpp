@@ -96,8 +96,10 @@ class CoupledSolver {
   /// the type's own: secant columns, Aitken's factor, scaling weights), between time steps.
   void save_state(State& state) const;
   /// Continue from a saved state (after initialize()); throws std::runtime_error if it does
-  /// not fit this coupled solver or interface.
-  void load_state(const State& state);
+  /// not fit this coupled solver or interface. With `own` false only the predictor's history
+  /// is taken: the type's own memory (secant columns, Aitken's factor, scaling) starts afresh,
+  /// so that another coupled solver can continue the run.
+  void load_state(const State& state, bool own = true);
   /// Wall time spent in each solver since initialize(), in seconds.
   const std::array<double, 2>& solver_time_total() const { return solver_time_total_; }
   /// Wall time spent in the coupled solver's own solvers (iqnism's surrogate, its coupling

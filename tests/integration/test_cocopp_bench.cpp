@@ -341,3 +341,51 @@ TEST(CocoppBench, SolverInputErrorsNameTheBenchFileAndTheKey) {
 }
 
 }  // namespace
+
+namespace {
+
+// start_from_state: a window of a long run. The base case runs 20 steps and saves its state;
+// every bench run continues it to step 30 with its own coupled solver, Aitken too (another
+// type, whose memory starts afresh), and counts only its own 10 steps.
+TEST(CocoppBench, StartFromStateContinuesTheBaseCaseWithEveryVariant) {
+  const fs::path dir = bench_directory("bench_state", R"(base_case: flow_structure/case.yaml
+start_from_state: true
+reference: {tolerance: 1.0e-8}
+settings: {number_of_timesteps: 30}
+variants:
+  - name: iqni_ls_q10
+  - name: aitken
+    coupled_solver: {type: aitken, omega_max: 0.05}
+)");
+  const fs::path base = dir / "flow_structure" / "case.yaml";
+  std::string text = read_text(base);
+  const std::string steps = "number_of_timesteps: 100";
+  ASSERT_NE(text.find(steps), std::string::npos);
+  text.replace(text.find(steps), steps.size(), "number_of_timesteps: 20");
+  write_text(base, text);
+
+  auto result = run_cocopp("bench --no-plot " + (dir / "bench.yaml").string());
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_NE(result.output.find("start_from_state: no saved state"), std::string::npos)
+      << result.output;
+
+  ASSERT_EQ(run_cocopp("run -q " + base.string()).exit_code, 0);
+  result = run_cocopp("bench --no-plot " + (dir / "bench.yaml").string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const nlohmann::json bench = read_json(dir / "results" / "bench" / "bench.json");
+  for (const char* name : {"reference", "iqni_ls_q10", "aitken"}) {
+    const nlohmann::json& run = run_named(bench, name);
+    EXPECT_EQ(run["steps_completed"], 10) << name;
+    const auto h5 = run_command("/usr/bin/python3 -c \"import h5py; f = h5py.File('" +
+                                (dir / "results/bench" / name / "results/case.h5").string() +
+                                "'); print(list(f['steps/step'][:]), "
+                                "f.attrs['restarted_after_step'])\"");
+    EXPECT_NE(h5.output.find("[1, 2, 3,"), std::string::npos) << name << h5.output;
+    EXPECT_NE(h5.output.find("30] 20"), std::string::npos) << name << h5.output;
+  }
+  EXPECT_GT(run_named(bench, "iqni_ls_q10")["displacement_error"].get<double>(), 0.0);
+  EXPECT_LT(run_named(bench, "iqni_ls_q10")["displacement_error"].get<double>(), 1e-6);
+  fs::remove_all(dir);
+}
+
+}  // namespace
