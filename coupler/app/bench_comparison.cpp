@@ -108,7 +108,7 @@ BenchRow make_row(const PlannedRun& run, const RunReport& report) {
   if (!iterations.empty())
     row.maximum_iterations = *std::max_element(iterations.begin(), iterations.end());
   row.solver_calls = 2 * summary.total_iterations();  // each solver once per coupling iteration
-  row.wall_time = summary.wall_time();
+  row.wall_time = run.from_state ? summary.steps_wall_time() : summary.wall_time();
   row.coupler_time = summary.step_coupler_time();
   row.solver_time = summary.solver_time();
   row.unconverged_steps = static_cast<int>(summary.unconverged_steps().size());

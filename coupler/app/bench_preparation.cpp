@@ -116,7 +116,7 @@ PlannedRun prepare_run(const BenchFile& bench, const YAML::Node& base_case,
   std::ofstream(file) << "# written by cocopp bench from " << bench.file.string() << "\n"
                       << out.c_str() << "\n";
   return {bench_case.name, name, file,
-          apply_solver_inputs(file, solver_inputs(bench, bench_case, run))};
+          apply_solver_inputs(file, solver_inputs(bench, bench_case, run)), bench.start_from_state};
 }
 
 }  // namespace

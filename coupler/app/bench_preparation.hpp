@@ -14,6 +14,9 @@ struct PlannedRun {
   std::string name;
   fs::path case_file;
   std::string changed_inputs;  ///< input files changed by solver_inputs, and from where
+  /// start_from_state: the run continues a saved state; its time is that of its steps (the
+  /// solvers' restart, e.g. ccx replaying the saved steps, is no part of the method's cost).
+  bool from_state = false;
 };
 
 /// Write <output_directory>/[<case>/]<name>/ for every run (the reference first in each case)

@@ -82,6 +82,7 @@ void RunSummary::add_step(const StepRecord& record) {
   for (const auto& warning : record.warnings)
     warnings_.push_back("step " + std::to_string(record.step) + ": " + warning);
   wall_time_ += record.wall_time;
+  steps_wall_time_ += record.wall_time;
   coupler_time_ += record.coupler_time;
   iteration_coupler_time_ += record.coupler_time;
   for (std::size_t i = 0; i < solver_times_.size(); ++i) solver_times_[i] += record.solver_times[i];

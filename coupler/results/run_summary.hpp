@@ -35,6 +35,8 @@ class RunSummary {
   /// NaN before the first step.
   double average_iterations() const;
   double wall_time() const { return wall_time_; }
+  /// The wall time inside the steps only (no start-up: e.g. a restart's replay).
+  double steps_wall_time() const { return steps_wall_time_; }
   /// The time spent in the solvers, summed over them (before finish(): inside the steps).
   double solver_time() const;
   /// The coupling algorithm's own time inside the steps (no start-up, no results I/O).
@@ -59,6 +61,7 @@ class RunSummary {
   bool finished_ = false;
   RunOutcome outcome_;
   double wall_time_ = 0;
+  double steps_wall_time_ = 0;
   std::vector<double> solver_times_;
   double coupler_time_ = 0;
   double iteration_coupler_time_ = 0;  ///< sum of the steps' coupler_time

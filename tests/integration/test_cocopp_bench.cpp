@@ -382,6 +382,10 @@ variants:
                                 "f.attrs['restarted_after_step'])\"");
     EXPECT_NE(h5.output.find("[1, 2, 3,"), std::string::npos) << name << h5.output;
     EXPECT_NE(h5.output.find("30] 20"), std::string::npos) << name << h5.output;
+    // The run's time is its steps': less than the whole run's, which includes the restart.
+    const nlohmann::json summary =
+        read_json(dir / "results/bench" / name / "results/case.summary.json");
+    EXPECT_LT(run["wall_time"].get<double>(), summary["wall_time"].get<double>()) << name;
   }
   EXPECT_GT(run_named(bench, "iqni_ls_q10")["displacement_error"].get<double>(), 0.0);
   EXPECT_LT(run_named(bench, "iqni_ls_q10")["displacement_error"].get<double>(), 1e-6);
