@@ -5,7 +5,7 @@
 #
 #   scripts/make_doc_figures.sh --list             # the figures, what each needs and how long
 #   scripts/make_doc_figures.sh stability          # one or more figures by name
-#   scripts/make_doc_figures.sh all                # every figure (about 3 hours)
+#   scripts/make_doc_figures.sh all                # every figure (about 3.5 hours)
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 source "$root/scripts/lib/cocopp-bin.sh"
@@ -25,6 +25,8 @@ figures=(
   "wire_drawing_bench|OpenFOAM and CalculiX|20 min|docs/wire-drawing.md"
   "wire_drawing_bench_load_driven|OpenFOAM and CalculiX|8 min|docs/wire-drawing.md"
   "wire_drawing|OpenFOAM and CalculiX|75 min|docs/wire-drawing.md"
+  "turek_hron_fsi1|OpenFOAM and CalculiX|4 min|docs/validation-turek-hron.md"
+  "turek_hron_fsi3|OpenFOAM and CalculiX|30 min|docs/validation-turek-hron.md"
 )
 
 publish() {  # publish <file under results/> <name in docs/images>
@@ -79,6 +81,16 @@ make_wire_drawing() {
   "$example/run.sh" --name paper
   "$python" "$example/plot.py" "$example/results/paper"
   publish "$example/results/paper/wire-drawing.png" wire-drawing.png
+}
+
+make_turek_hron_fsi1() {
+  "$root/examples/turek_hron/fsi/run.sh" fsi1
+  publish "$root/examples/turek_hron/fsi/results/fsi1/turek-hron.png" turek-hron-fsi1.png
+}
+
+make_turek_hron_fsi3() {
+  "$root/examples/turek_hron/fsi/run.sh" fsi3 --dt 0.002 --end-time 8
+  publish "$root/examples/turek_hron/fsi/results/fsi3/turek-hron.png" turek-hron-fsi3.png
 }
 
 if [ $# -eq 0 ] || [ "$1" = --help ] || [ "$1" = -h ]; then

