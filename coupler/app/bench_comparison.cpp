@@ -18,6 +18,7 @@ using Fields = std::map<std::string, ResultsReader::Array>;  ///< one variable, 
 struct Results {
   double delta_t = kNaN;
   std::vector<int> steps;
+  int restarted_after_step = 0;  ///< a continued file: the step its run started after
   Fields displacement;
   Fields pressure;
 };
@@ -27,15 +28,18 @@ Results read_results(const fs::path& file) {
   Results r;
   r.delta_t = reader.delta_t();
   r.steps = reader.steps();
+  if (reader.has_attribute("/", "restarted_after_step"))
+    r.restarted_after_step = static_cast<int>(reader.number("/", "restarted_after_step"));
   r.displacement = reader.variable("x", "displacement");
   r.pressure = reader.variable("y", "pressure");
   return r;
 }
 
-/// ||v - r|| / ||r|| over every model part and every time step both runs have; NaN if they
-/// share no step or do not have the same parts and sizes.
+/// ||v - r|| / ||r|| over every model part and every time step both runs have, after
+/// `first_after` (a run continuing a saved state: its own steps); NaN if they share no step or
+/// do not have the same parts and sizes.
 double relative_error(const Results& v, const Fields& variant, const Results& ref,
-                      const Fields& reference) {
+                      const Fields& reference, int first_after) {
   if (reference.empty() || variant.size() != reference.size()) return kNaN;
   std::map<int, std::size_t> reference_row;
   for (std::size_t i = 0; i < ref.steps.size(); ++i) reference_row[ref.steps[i]] = i;
@@ -47,6 +51,7 @@ double relative_error(const Results& v, const Fields& variant, const Results& re
     const ResultsReader::Array& f = found->second;
     const std::size_t row_size = r.row_size();
     for (std::size_t i = 0; i < v.steps.size(); ++i) {
+      if (v.steps[i] <= first_after) continue;
       const auto row = reference_row.find(v.steps[i]);
       if (row == reference_row.end()) continue;
       const std::size_t a = i * row_size, b = row->second * row_size;
@@ -64,7 +69,8 @@ double relative_error(const Results& v, const Fields& variant, const Results& re
   return std::sqrt(difference / norm);
 }
 
-void compute_errors(BenchRow& row, const fs::path& results_file, const Results& reference) {
+void compute_errors(BenchRow& row, const fs::path& results_file, const Results& reference,
+                    bool from_state) {
   if (!fs::exists(results_file)) return add_note(row, "no results file");
   Results v;
   try {
@@ -76,8 +82,11 @@ void compute_errors(BenchRow& row, const fs::path& results_file, const Results& 
   if (!(std::abs(v.delta_t - reference.delta_t) <= 1e-12 * std::abs(reference.delta_t)))
     return add_note(row, fmt::format("delta_t {:g} differs from the reference's {:g}: no error",
                                      v.delta_t, reference.delta_t));
-  row.displacement_error = relative_error(v, v.displacement, reference, reference.displacement);
-  row.pressure_error = relative_error(v, v.pressure, reference, reference.pressure);
+  // A run continuing a saved state: the steps before it are the base run's in every file.
+  const int first_after = from_state ? v.restarted_after_step : std::numeric_limits<int>::min();
+  row.displacement_error =
+      relative_error(v, v.displacement, reference, reference.displacement, first_after);
+  row.pressure_error = relative_error(v, v.pressure, reference, reference.pressure, first_after);
   if (std::isnan(row.displacement_error)) add_note(row, "no step in common with reference");
 }
 
@@ -128,7 +137,7 @@ void compare_with_references(const BenchFile& bench, const std::vector<PlannedRu
       for (std::size_t i = 0; i < rows.size(); ++i)
         if (rows[i].case_name == c.name)
           compute_errors(rows[i], runs[i].case_file.parent_path() / "results" / "case.h5",
-                         reference_results);
+                         reference_results, runs[i].from_state);
     } catch (const std::exception& e) {
       fmt::print(stderr, "warning: cannot read the reference {}: {}\n", reference.string(),
                  e.what());
