@@ -1,0 +1,64 @@
+#!/usr/bin/env python3
+"""Residual histories of a Turek-Hron bench's runs (docs/validation-turek-hron.md):
+
+    bench_residuals.py BENCH_OUTPUT [--steps 3] [-o residuals.png]
+
+BENCH_OUTPUT is a cocopp bench output directory (bench.json and one directory per run, e.g.
+examples/turek_hron/fsi/results/bench_fsi3): the coupling residual per iteration of each run's
+last --steps time steps, one after the other, on a log scale, with the runs' tolerance.
+"""
+import argparse
+import json
+import pathlib
+
+import h5py
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def last_steps(results, steps):
+    """[(step, norms)] of the last `steps` steps of a results file."""
+    with h5py.File(results, "r") as f:
+        numbers = f["steps/step"][:]
+        offset, count = f["residuals/offset"][:], f["residuals/count"][:]
+        norms = f["residuals/norms"][:]
+        tolerance = f.attrs["tolerance"][0] if len(f.attrs["tolerance"]) else None
+    rows = range(len(numbers) - steps, len(numbers))
+    return [(int(numbers[r]), norms[offset[r]:offset[r] + count[r]]) for r in rows], tolerance
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("bench", type=pathlib.Path)
+    parser.add_argument("--steps", type=int, default=3)
+    parser.add_argument("-o", "--output", type=pathlib.Path)
+    args = parser.parse_args()
+    runs = json.loads((args.bench / "bench.json").read_text())["runs"]
+    figure, axis = plt.subplots(figsize=(9, 4.5))
+    for run in runs:
+        if run["name"] == "reference":
+            continue
+        history, tolerance = last_steps(args.bench / run["name"] / "results/case.h5", args.steps)
+        x, y, start = [], [], 0
+        for _, norms in history:
+            x += [start + k for k in range(len(norms))]
+            y += list(norms)
+            x.append(float("nan"))
+            y.append(float("nan"))
+            start += len(norms) + 1
+        axis.semilogy(x, y, marker=".", lw=0.8,
+                      label=f"{run['name']} ({run['average_iterations']:.2f} it/step)")
+    if tolerance:
+        axis.axhline(tolerance, color="k", ls="--", lw=0.8, label="tolerance")
+    axis.set_xlabel(f"coupling iteration (the last {args.steps} steps, one after the other)")
+    axis.set_ylabel("residual 2-norm [m]")
+    axis.legend(fontsize=8)
+    axis.set_title("Turek-Hron FSI3, developed oscillation: coupling residuals")
+    figure.tight_layout()
+    figure.savefig(args.output or args.bench / "residuals.png", dpi=110)
+
+
+if __name__ == "__main__":
+    main()
