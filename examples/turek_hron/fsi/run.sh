@@ -10,9 +10,11 @@ root=$(cd "$here/../../.." && pwd)
 source "$root/scripts/lib/cocopp-bin.sh"
 cocopp=$(cocopp_executable "$root")
 test=${1:-}
+usage="usage: $0 fsi1|fsi2|fsi3 [--name NAME] [make_case.py options] (make_case.py --help lists them)"
 case "$test" in
   fsi1 | fsi2 | fsi3) ;;
-  *) echo "usage: $0 fsi1|fsi2|fsi3 [--name NAME] [make_case.py options]" >&2; exit 2 ;;
+  -h | --help) echo "$usage"; exit 0 ;;
+  *) echo "$usage" >&2; exit 2 ;;
 esac
 shift
 name=$test
