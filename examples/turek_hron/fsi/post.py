@@ -78,8 +78,8 @@ def oscillation(times, values, periods, window_s):
     minimum between the first and last of the crossings used (as Turek & Hron define them)."""
     recent = times >= times[-1] - window_s
     level = 0.5 * (values[recent].max() + values[recent].min())
-    # A crossing counts when the signal then stays above the level for a tenth of a period or
-    # more: noise around the level crosses it too.
+    # Noise around the level crosses it too: a crossing closer than 0.3 of the typical period
+    # to the one before it is dropped.
     up = crossings(times, values, level)
     if len(up) < 2:
         return None
