@@ -150,7 +150,7 @@ StepRecord CoupledSolver::iterate_step(int step, double time) {
       tolerance_met = true;
       break;
     }
-    criterion_->update(r);
+    criterion_->update(convergence_residual(r));
     record.criterion_progress = criterion_->progress();
     if (iteration_observer_)
       iteration_observer_({step, iteration, record.residual_norms.back(), record.criterion_progress,

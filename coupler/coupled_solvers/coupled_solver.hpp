@@ -117,6 +117,9 @@ class CoupledSolver {
                                               const Eigen::VectorXd& yt) {
     return yt;
   }
+  /// What the convergence criterion measures of an iteration whose residual is r = x~ - x:
+  /// r itself, except in methods whose second solver gets loads other than F(x) (ibqn).
+  virtual Eigen::VectorXd convergence_residual(const Eigen::VectorXd& r) { return r; }
   /// The iteration that met the convergence criterion (no next_input follows): its secant
   /// information is still worth keeping for the next steps.
   virtual void on_converged(const Eigen::VectorXd& /*x*/, const Eigen::VectorXd& /*xt*/,
