@@ -71,7 +71,7 @@ FIXED_WALLS = ("    walls        { type noSlip; }\n    cylinder     { type noSli
                "    frontAndBack { type empty; }\n")
 
 
-def fluid_files(test, level, dt, end_time, depth):
+def fluid_files(test, level, dt, end_time, depth, pressure_rel_tol=0.0):
     write_every = max(1, round(0.1 / dt))
     files = {
         "system/blockMeshDict": make_mesh.block_mesh_dict(level, depth),
@@ -134,7 +134,14 @@ def fluid_files(test, level, dt, end_time, depth):
         "laplacianSchemes { default Gauss linear corrected; }\n"
         "interpolationSchemes { default linear; }\nsnGradSchemes   { default corrected; }\n",
         "system/fvSolution": header("dictionary", "fvSolution") +
-        "solvers\n{\n    \"(p|pFinal|pcorr|pcorrFinal)\"\n    {\n        solver          PCG;\n"
+        "solvers\n{\n"
+        "    // The last pressure corrector to 1e-10; the ones before it (and their\n"
+        "    // non-orthogonal correctors) to relTol of their initial residual (make_case.py\n"
+        "    // --pressure-rel-tol).\n"
+        "    \"(p|pcorr)\"\n    {\n        solver          PCG;\n"
+        "        preconditioner  DIC;\n        tolerance       1e-10;\n"
+        f"        relTol          {pressure_rel_tol:g};\n    }}\n"
+        "    \"(pFinal|pcorrFinal)\"\n    {\n        solver          PCG;\n"
         "        preconditioner  DIC;\n        tolerance       1e-10;\n        relTol          0;\n"
         "    }\n    \"(U|UFinal)\"\n    {\n        solver          smoothSolver;\n"
         "        smoother        symGaussSeidel;\n        tolerance       1e-10;\n"
@@ -226,12 +233,16 @@ def main():
     parser.add_argument("--depth", type=float, default=0.01, help="the fluid mesh's depth, m")
     parser.add_argument("--alpha", type=float, default=-0.1,
                         help="the flag's HHT alpha (ccx *DYNAMIC, ALPHA=): numerical damping")
+    parser.add_argument("--pressure-rel-tol", type=float, default=0.0,
+                        help="relative tolerance of the pressure correctors before the last "
+                             "(0: every one to 1e-10)")
     args = parser.parse_args()
     dt = args.dt or DEFAULT_DT[args.test]
     end_time = args.end_time or DEFAULT_END[args.test]
     steps = round(end_time / dt)
     command = "make_case.py " + " ".join(sys.argv[1:])
-    write(args.output / "fluid", fluid_files(args.test, args.level, dt, end_time, args.depth))
+    write(args.output / "fluid", fluid_files(args.test, args.level, dt, end_time, args.depth,
+                                                 args.pressure_rel_tol))
     (args.output / "flag").mkdir(parents=True, exist_ok=True)
     (args.output / "flag/flag.inp").write_text(
         make_flag.deck(args.test, 20 * args.level, 2 * args.level, dt, args.alpha))
@@ -241,7 +252,7 @@ def main():
     (args.output / "turek_hron.json").write_text(json.dumps(
         {"test": args.test, "level": args.level, "dt": dt, "end_time": end_time,
          "depth": args.depth, "q": args.q, "tolerance": args.tolerance,
-         "alpha": args.alpha}, indent=1) + "\n")
+         "alpha": args.alpha, "pressure_rel_tol": args.pressure_rel_tol}, indent=1) + "\n")
     print(f"make_case.py: {args.output}: {args.test}, level {args.level}, "
           f"{make_mesh.cell_count(args.level)} cells, dt {dt}, {steps} steps")
 
