@@ -5,7 +5,8 @@
 
 BENCH_OUTPUT is a cocopp bench output directory (bench.json and one directory per run, e.g.
 examples/turek_hron/fsi/results/bench_fsi3): the coupling residual per iteration of each run's
-last --steps time steps, one after the other, on a log scale, with the runs' tolerance.
+last --steps time steps, one after the other, on a log scale, with the runs' tolerance; a run
+that stopped inside a step (diverged) ends with that step's residuals, dotted.
 """
 import argparse
 import json
@@ -19,14 +20,20 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 
 def last_steps(results, steps):
-    """[(step, norms)] of the last `steps` steps of a results file."""
-    with h5py.File(results, "r") as f:
+    """[(step, norms)] of the last `steps` steps of a results file, then the step the run
+    stopped in, if it stopped inside one (a divergence), and the tolerance."""
+    with h5py.File(results, "r", locking=False) as f:
         numbers = f["steps/step"][:]
         offset, count = f["residuals/offset"][:], f["residuals/count"][:]
         norms = f["residuals/norms"][:]
         tolerance = f.attrs["tolerance"][0] if len(f.attrs["tolerance"]) else None
+        stopped = None
+        if "unfinished_step" in f:
+            group = f["unfinished_step"]
+            stopped = (int(group.attrs["step"]), group["residual_norms"][:])
     rows = range(len(numbers) - steps, len(numbers))
-    return [(int(numbers[r]), norms[offset[r]:offset[r] + count[r]]) for r in rows], tolerance
+    history = [(int(numbers[r]), norms[offset[r]:offset[r] + count[r]]) for r in rows]
+    return history, stopped, tolerance
 
 
 def main():
@@ -37,10 +44,20 @@ def main():
     args = parser.parse_args()
     runs = json.loads((args.bench / "bench.json").read_text())["runs"]
     figure, axis = plt.subplots(figsize=(9, 4.5))
+    tolerance = None
     for run in runs:
         if run["name"] == "reference":
             continue
-        history, tolerance = last_steps(args.bench / run["name"] / "results/case.h5", args.steps)
+        # Only the run's own steps: a run continuing a saved state holds the base run's too.
+        own = min(args.steps, run["steps_completed"] or 0)
+        history, stopped, run_tolerance = last_steps(
+            args.bench / run["name"] / "results/case.h5", own)
+        tolerance = tolerance or run_tolerance
+        if stopped:
+            history.append(stopped)
+            label = f"{run['name']} ({run['outcome']} in step {stopped[0]})"
+        else:
+            label = f"{run['name']} ({run['average_iterations']:.2f} it/step)"
         x, y, start = [], [], 0
         for _, norms in history:
             x += [start + k for k in range(len(norms))]
@@ -48,8 +65,7 @@ def main():
             x.append(float("nan"))
             y.append(float("nan"))
             start += len(norms) + 1
-        axis.semilogy(x, y, marker=".", lw=0.8,
-                      label=f"{run['name']} ({run['average_iterations']:.2f} it/step)")
+        axis.semilogy(x, y, marker=".", lw=0.8, ls=":" if stopped else "-", label=label)
     if tolerance:
         axis.axhline(tolerance, color="k", ls="--", lw=0.8, label="tolerance")
     axis.set_xlabel(f"coupling iteration (the last {args.steps} steps, one after the other)")
