@@ -32,6 +32,9 @@ DEFAULT_DT = {"fsi1": 0.01, "fsi2": 0.002, "fsi3": 0.001}
 DEFAULT_END = {"fsi1": 10.0, "fsi2": 15.0, "fsi3": 10.0}
 
 
+ENDTIME_MARGIN = 1000.0  # s beyond the run's end (controlDict's endTime)
+
+
 def header(cls, name):
     return (f"FoamFile\n{{\n    version     2.0;\n    format      ascii;\n    class       {cls};\n"
             f"    object      {name};\n}}\n\n")
@@ -114,7 +117,10 @@ def fluid_files(test, level, dt, end_time, depth, pressure_rel_tol=0.0):
         "simulationType  laminar;\n",
         "system/controlDict": header("dictionary", "controlDict") +
         "application     cocoppPimpleFoam;\nstartFrom       startTime;\nstartTime       0;\n"
-        f"stopAt          endTime;\nendTime         {end_time:.15g};\ndeltaT          {dt:.15g};\n"
+        "stopAt          endTime;\n"
+        "// The coupler ends the run (case.yaml's number_of_timesteps); endTime lies beyond it so\n"
+        "// that a restart or a cocopp bench window can go on past the first run's end.\n"
+        f"endTime         {end_time + ENDTIME_MARGIN:.15g};\ndeltaT          {dt:.15g};\n"
         f"writeControl    timeStep;\nwriteInterval   {write_every};\npurgeWrite      0;\n"
         "writeFormat     binary;\nwritePrecision  12;\nwriteCompression off;\n"
         "timeFormat      general;\ntimePrecision   8;\nrunTimeModifiable false;\n\n"
