@@ -8,6 +8,9 @@
     test_turek_hron_fsi.py fsi3 BIN_DIR SOURCE_DIR   the first 0.1 s of FSI3 (50 steps): every step
                                              converges, at most 4 coupling iterations a step, drag at
                                              0.1 s as the level-1 run measured it (1 %)
+    test_turek_hron_fsi.py cfd3 SOURCE_DIR   run.sh's cfd3 (the flag rigid, OpenFOAM's pimpleFoam,
+                                             no coupler) to 0.1 s: its drag is the coupled FSI3's
+                                             at 0.1 s, where the flag has hardly moved (0.5 %)
 """
 import json
 import pathlib
@@ -116,6 +119,24 @@ def test_fsi3(bin_dir, source):
                   f"drag {drag[-1]:.6g} against {FSI3_DRAG_AT_0_1}")
 
 
+def test_cfd3(source):
+    with tempfile.TemporaryDirectory() as scratch:
+        case = os.path.join(scratch, "cfd3")
+        run(["/usr/bin/python3", example(source, "make_case.py"), "cfd3", case, "--dt", "0.002",
+             "--end-time", "0.1"], scratch)
+        check(not os.path.exists(os.path.join(case, "fluid/constant/dynamicMeshDict")),
+              "cfd3 has a dynamicMeshDict: its mesh is to be static")
+        run([os.path.join(case, "fluid/Allrun")], scratch)
+        sys.path.insert(0, example(source, ""))
+        from post import read_forces
+        times, drag, lift = read_forces(pathlib.Path(case) / "fluid", 0.01)
+        check(abs(times[-1] - 0.1) < 1e-9, f"forces end at {times[-1]}")
+        print(f"CFD3 drag at 0.1 s: {drag[-1]:.6g} N/m (coupled FSI3: {FSI3_DRAG_AT_0_1})")
+        check(abs(drag[-1] / FSI3_DRAG_AT_0_1 - 1) < 0.005,
+              f"drag {drag[-1]:.6g} against the coupled run's {FSI3_DRAG_AT_0_1}")
+        run(["/usr/bin/python3", example(source, "post.py"), case], scratch)  # forces only
+
+
 def main():
     what = sys.argv[1]
     if what == "mesh":
@@ -124,6 +145,8 @@ def main():
         test_fsi1(sys.argv[2], sys.argv[3])
     elif what == "fsi3":
         test_fsi3(sys.argv[2], sys.argv[3])
+    elif what == "cfd3":
+        test_cfd3(sys.argv[2])
     else:
         sys.exit(__doc__)
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Write a Turek-Hron FSI test as a cocopp case (docs/validation-turek-hron.md).
 
-    make_case.py fsi1|fsi2|fsi3 OUTPUT [--level 1] [--dt 0.001] [--end-time 15] [--q 10]
+    make_case.py fsi1|fsi2|fsi3|cfd3 OUTPUT [--level 1] [--dt 0.001] [--end-time 15] [--q 10]
                  [--tolerance 1e-7] [--alpha -0.1]
 
 OUTPUT/fluid: the channel as an OpenFOAM case for cocoppPimpleFoam (make_mesh.py's blockMeshDict,
@@ -11,6 +11,10 @@ OUTPUT/case.yaml: the coupled case (IQN-ILS with reuse). The benchmark of S. Tur
 and laminar incompressible flow", in: Fluid-Structure Interaction, LNCSE 53, Springer 2006,
 371-385: fluid rho 1000 kg/m3, nu 1e-3 m2/s; parabolic inflow of mean speed U (fsi1 0.2,
 fsi2 1, fsi3 2 m/s) ramped up by (1 - cos(pi t / 2)) / 2 over the first 2 s.
+
+cfd3 is the benchmark's CFD3 test, the fluid alone with the flag rigid at FSI3's inflow:
+OUTPUT/fluid only, a static mesh, for OpenFOAM's own pimpleFoam (its Allrun), to tell the
+fluid's share of an FSI3 error from the coupled one.
 """
 import argparse
 import json
@@ -24,12 +28,13 @@ import make_flag  # noqa: E402  (the flag's deck, shared with the CSM tests)
 import make_mesh  # noqa: E402
 
 RHO_FLUID, NU_FLUID = 1000.0, 1.0e-3
-MEAN_INFLOW = {"fsi1": 0.2, "fsi2": 1.0, "fsi3": 2.0}
+MEAN_INFLOW = {"fsi1": 0.2, "fsi2": 1.0, "fsi3": 2.0, "cfd3": 2.0}
 RAMP_TIME = 2.0
 # Time step and end time of each test unless given: fsi1 runs to its steady state, fsi2 and
-# fsi3 until their oscillation has settled.
-DEFAULT_DT = {"fsi1": 0.01, "fsi2": 0.002, "fsi3": 0.001}
-DEFAULT_END = {"fsi1": 10.0, "fsi2": 15.0, "fsi3": 10.0}
+# fsi3 until their oscillation has settled; cfd3's rigid flag sheds its wake from the symmetric
+# start slowly (it settles by about 15 s on level 1).
+DEFAULT_DT = {"fsi1": 0.01, "fsi2": 0.002, "fsi3": 0.001, "cfd3": 0.001}
+DEFAULT_END = {"fsi1": 10.0, "fsi2": 15.0, "fsi3": 10.0, "cfd3": 20.0}
 
 
 ENDTIME_MARGIN = 1000.0  # s beyond the run's end (controlDict's endTime)
@@ -72,6 +77,14 @@ checkMesh > log.checkMesh 2>&1 || { echo "Allmesh: checkMesh failed, see $PWD/lo
 
 FIXED_WALLS = ("    walls        { type noSlip; }\n    cylinder     { type noSlip; }\n"
                "    frontAndBack { type empty; }\n")
+
+
+def end_time_entry(test, end_time):
+    if test == "cfd3":  # pimpleFoam alone: endTime ends the run
+        return f"endTime         {end_time:.15g};\n"
+    return ("// The coupler ends the run (case.yaml's number_of_timesteps); endTime lies beyond it so\n"
+            "// that a restart or a cocopp bench window can go on past the first run's end.\n"
+            f"endTime         {end_time + ENDTIME_MARGIN:.15g};\n")
 
 
 def fluid_files(test, level, dt, end_time, depth, pressure_rel_tol=0.0):
@@ -117,10 +130,8 @@ def fluid_files(test, level, dt, end_time, depth, pressure_rel_tol=0.0):
         "simulationType  laminar;\n",
         "system/controlDict": header("dictionary", "controlDict") +
         "application     cocoppPimpleFoam;\nstartFrom       startTime;\nstartTime       0;\n"
-        "stopAt          endTime;\n"
-        "// The coupler ends the run (case.yaml's number_of_timesteps); endTime lies beyond it so\n"
-        "// that a restart or a cocopp bench window can go on past the first run's end.\n"
-        f"endTime         {end_time + ENDTIME_MARGIN:.15g};\ndeltaT          {dt:.15g};\n"
+        "stopAt          endTime;\n" + end_time_entry(test, end_time) +
+        f"deltaT          {dt:.15g};\n"
         f"writeControl    timeStep;\nwriteInterval   {write_every};\npurgeWrite      0;\n"
         "writeFormat     binary;\nwritePrecision  12;\nwriteCompression off;\n"
         "timeFormat      general;\ntimePrecision   8;\nrunTimeModifiable false;\n\n"
@@ -159,7 +170,31 @@ def fluid_files(test, level, dt, end_time, depth, pressure_rel_tol=0.0):
         "    nNonOrthogonalCorrectors 1;\n    correctPhi      yes;\n}\n",
     }
     files.update(inlet_boundary_data(MEAN_INFLOW[test], depth))
+    if test == "cfd3":
+        rigid_flag(files)
     return files
+
+
+ALLRUN_RIGID = """\
+#!/bin/sh
+# The fluid alone, the flag rigid (make_case.py cfd3): the mesh, then OpenFOAM's pimpleFoam.
+cd "$(dirname "$0")" || exit 1
+./Allmesh || exit 1
+export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}"
+pimpleFoam > log.pimpleFoam 2>&1 || { echo "Allrun: pimpleFoam failed, see $PWD/log.pimpleFoam" >&2; exit 1; }
+"""
+
+
+def rigid_flag(files):
+    """The fluid case for OpenFOAM's own pimpleFoam on a static mesh: no mesh motion, no
+    coupler; the flag a fixed wall."""
+    del files["0/pointDisplacement"], files["constant/dynamicMeshDict"]
+    files["0/U"] = files["0/U"].replace(
+        "flag         { type movingWallVelocity; value uniform (0 0 0); }",
+        "flag         { type noSlip; }")
+    files["system/controlDict"] = files["system/controlDict"].replace(
+        "application     cocoppPimpleFoam;", "application     pimpleFoam;")
+    files["Allrun"] = ALLRUN_RIGID
 
 
 CASE = """\
@@ -222,8 +257,16 @@ def write(root, files):
         path = root / name
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(text)
-        if name.endswith("Allmesh"):
+        if name.endswith(("Allmesh", "Allrun")):
             path.chmod(0o755)
+
+
+def write_made(args, dt, end_time):
+    """turek_hron.json: what the case was made with, for post.py."""
+    (args.output / "turek_hron.json").write_text(json.dumps(
+        {"test": args.test, "level": args.level, "dt": dt, "end_time": end_time,
+         "depth": args.depth, "q": args.q, "tolerance": args.tolerance,
+         "alpha": args.alpha, "pressure_rel_tol": args.pressure_rel_tol}, indent=1) + "\n")
 
 
 def main():
@@ -249,16 +292,18 @@ def main():
     command = "make_case.py " + " ".join(sys.argv[1:])
     write(args.output / "fluid", fluid_files(args.test, args.level, dt, end_time, args.depth,
                                                  args.pressure_rel_tol))
+    if args.test == "cfd3":
+        write_made(args, dt, end_time)
+        print(f"make_case.py: {args.output}: cfd3 (the fluid alone, fluid/Allrun), level "
+              f"{args.level}, {make_mesh.cell_count(args.level)} cells, dt {dt}, {steps} steps")
+        return
     (args.output / "flag").mkdir(parents=True, exist_ok=True)
     (args.output / "flag/flag.inp").write_text(
         make_flag.deck(args.test, 20 * args.level, 2 * args.level, dt, args.alpha))
     (args.output / "case.yaml").write_text(
         case_file(args.test, args.level, dt, steps, args.q, args.tolerance, args.depth,
                   command))
-    (args.output / "turek_hron.json").write_text(json.dumps(
-        {"test": args.test, "level": args.level, "dt": dt, "end_time": end_time,
-         "depth": args.depth, "q": args.q, "tolerance": args.tolerance,
-         "alpha": args.alpha, "pressure_rel_tol": args.pressure_rel_tol}, indent=1) + "\n")
+    write_made(args, dt, end_time)
     print(f"make_case.py: {args.output}: {args.test}, level {args.level}, "
           f"{make_mesh.cell_count(args.level)} cells, dt {dt}, {steps} steps")
 
