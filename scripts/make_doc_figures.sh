@@ -28,7 +28,7 @@ figures=(
   "turek_hron_fsi1|OpenFOAM and CalculiX|4 min|docs/validation-turek-hron.md"
   "turek_hron_fsi2|OpenFOAM and CalculiX|35 min|docs/validation-turek-hron.md"
   "turek_hron_fsi3|OpenFOAM and CalculiX|30 min|docs/validation-turek-hron.md"
-  "turek_hron_fsi3_bench|turek_hron_fsi3's run|30 min|docs/validation-turek-hron.md"
+  "turek_hron_fsi3_bench|turek_hron_fsi3's run|45 min|docs/validation-turek-hron.md"
 )
 
 publish() {  # publish <file under results/> <name in docs/images>
