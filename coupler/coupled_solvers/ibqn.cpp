@@ -24,10 +24,10 @@
 //
 // Convergence. The residual r = x~ - x says that S(y) is close to x; but y is not F(x), so the
 // pair the step ends with is off by the loads' mismatch y~ - y as well. CoCoNuT's ibqn, and
-// `convergence_residual: block` (the default), measure r alone: on the tube and on Turek-Hron
-// FSI3 that ends a step about 20 times further from the solution than IQN-ILS at the same
-// tolerance. `convergence_residual: coupled` measures r + S'(y~ - y), the estimate by S's
-// secant model of S(F(x)) - x: the residual the other methods measure.
+// `convergence_residual: block` (the default), measure r alone: at the same tolerance that
+// ends a step 20 times further from the solution than IQN-ILS on the tube, 280 times on
+// Turek-Hron FSI3 (docs/coupling.md). `convergence_residual: coupled` measures r + S'(y~ - y), the
+// estimate by S's secant model of S(F(x)) - x: the residual the other methods measure.
 //
 // Until both models hold secant information (the first iterations of a run, or of every step
 // without reuse), x <- x + omega r and S gets y~ = F(x), as in iqni; so does the first

@@ -79,8 +79,30 @@ FIXED_WALLS = ("    walls        { type noSlip; }\n    cylinder     { type noSli
                "    frontAndBack { type empty; }\n")
 
 
-def end_time_entry(test, end_time):
-    if test == "cfd3":  # pimpleFoam alone: endTime ends the run
+# The coupled tests' mesh motion: the flag's displacement from the coupler.
+MESH_MOTION_FILES = {
+    "0/pointDisplacement": header("pointVectorField", "pointDisplacement") +
+    "// flag: the coupler's displacement; everything else stays.\n"
+    "dimensions      [0 1 0 0 0 0 0];\ninternalField   uniform (0 0 0);\nboundaryField\n{\n"
+    "    flag         { type fixedValue; value uniform (0 0 0); }\n"
+    "    inlet        { type fixedValue; value uniform (0 0 0); }\n"
+    "    outlet       { type fixedValue; value uniform (0 0 0); }\n"
+    "    walls        { type fixedValue; value uniform (0 0 0); }\n"
+    "    cylinder     { type fixedValue; value uniform (0 0 0); }\n"
+    "    frontAndBack { type empty; }\n}\n",
+    "constant/dynamicMeshDict": header("dictionary", "dynamicMeshDict") +
+    "dynamicFvMesh   dynamicMotionSolverFvMesh;\n"
+    "motionSolverLibs (\"libfvMotionSolvers.so\");\n"
+    "// The flag's motion spread by a Laplacian whose diffusivity falls with the square of the\n"
+    "// distance from the flag: the cells next to it move with it, rigidly, and the\n"
+    "// distortion goes to the larger cells further out.\n"
+    "solver          displacementLaplacian;\n"
+    "displacementLaplacianCoeffs\n{\n    diffusivity     quadratic inverseDistance (flag);\n}\n",
+}
+
+
+def end_time_entry(rigid, end_time):
+    if rigid:  # pimpleFoam alone: endTime ends the run
         return f"endTime         {end_time:.15g};\n"
     return ("// The coupler ends the run (case.yaml's number_of_timesteps); endTime lies beyond it so\n"
             "// that a restart or a cocopp bench window can go on past the first run's end.\n"
@@ -88,6 +110,10 @@ def end_time_entry(test, end_time):
 
 
 def fluid_files(test, level, dt, end_time, depth, pressure_rel_tol=0.0):
+    # cfd3: the flag a fixed wall on a static mesh, for OpenFOAM's own pimpleFoam (no coupler).
+    rigid = test == "cfd3"
+    flag_velocity = ("{ type noSlip; }" if rigid
+                     else "{ type movingWallVelocity; value uniform (0 0 0); }")
     write_every = max(1, round(0.1 / dt))
     files = {
         "system/blockMeshDict": make_mesh.block_mesh_dict(level, depth),
@@ -97,7 +123,7 @@ def fluid_files(test, level, dt, end_time, depth, pressure_rel_tol=0.0):
         "    // The benchmark's parabolic inflow and its start-up ramp (constant/boundaryData).\n"
         "    inlet        { type timeVaryingMappedFixedValue; offset (0 0 0); setAverage off; }\n"
         "    outlet       { type zeroGradient; }\n"
-        "    flag         { type movingWallVelocity; value uniform (0 0 0); }\n" + FIXED_WALLS +
+        f"    flag         {flag_velocity}\n" + FIXED_WALLS +
         "}\n",
         "0/p": header("volScalarField", "p") +
         "// Kinematic pressure (p / rho), zero at the outlet.\n"
@@ -107,30 +133,14 @@ def fluid_files(test, level, dt, end_time, depth, pressure_rel_tol=0.0):
         "    flag         { type zeroGradient; }\n"
         "    walls        { type zeroGradient; }\n    cylinder     { type zeroGradient; }\n"
         "    frontAndBack { type empty; }\n}\n",
-        "0/pointDisplacement": header("pointVectorField", "pointDisplacement") +
-        "// flag: the coupler's displacement; everything else stays.\n"
-        "dimensions      [0 1 0 0 0 0 0];\ninternalField   uniform (0 0 0);\nboundaryField\n{\n"
-        "    flag         { type fixedValue; value uniform (0 0 0); }\n"
-        "    inlet        { type fixedValue; value uniform (0 0 0); }\n"
-        "    outlet       { type fixedValue; value uniform (0 0 0); }\n"
-        "    walls        { type fixedValue; value uniform (0 0 0); }\n"
-        "    cylinder     { type fixedValue; value uniform (0 0 0); }\n"
-        "    frontAndBack { type empty; }\n}\n",
-        "constant/dynamicMeshDict": header("dictionary", "dynamicMeshDict") +
-        "dynamicFvMesh   dynamicMotionSolverFvMesh;\n"
-        "motionSolverLibs (\"libfvMotionSolvers.so\");\n"
-        "// The flag's motion spread by a Laplacian whose diffusivity falls with the square of the\n"
-        "// distance from the flag: the cells next to it move with it, rigidly, and the\n"
-        "// distortion goes to the larger cells further out.\n"
-        "solver          displacementLaplacian;\n"
-        "displacementLaplacianCoeffs\n{\n    diffusivity     quadratic inverseDistance (flag);\n}\n",
         "constant/transportProperties": header("dictionary", "transportProperties") +
         f"transportModel  Newtonian;\nnu              {NU_FLUID};\nrho             {RHO_FLUID};\n",
         "constant/turbulenceProperties": header("dictionary", "turbulenceProperties") +
         "simulationType  laminar;\n",
         "system/controlDict": header("dictionary", "controlDict") +
-        "application     cocoppPimpleFoam;\nstartFrom       startTime;\nstartTime       0;\n"
-        "stopAt          endTime;\n" + end_time_entry(test, end_time) +
+        f"application     {'pimpleFoam' if rigid else 'cocoppPimpleFoam'};\n"
+        "startFrom       startTime;\nstartTime       0;\n"
+        "stopAt          endTime;\n" + end_time_entry(rigid, end_time) +
         f"deltaT          {dt:.15g};\n"
         f"writeControl    timeStep;\nwriteInterval   {write_every};\npurgeWrite      0;\n"
         "writeFormat     binary;\nwritePrecision  12;\nwriteCompression off;\n"
@@ -170,8 +180,7 @@ def fluid_files(test, level, dt, end_time, depth, pressure_rel_tol=0.0):
         "    nNonOrthogonalCorrectors 1;\n    correctPhi      yes;\n}\n",
     }
     files.update(inlet_boundary_data(MEAN_INFLOW[test], depth))
-    if test == "cfd3":
-        rigid_flag(files)
+    files.update({"Allrun": ALLRUN_RIGID} if rigid else MESH_MOTION_FILES)
     return files
 
 
@@ -183,18 +192,6 @@ cd "$(dirname "$0")" || exit 1
 export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}"
 pimpleFoam > log.pimpleFoam 2>&1 || { echo "Allrun: pimpleFoam failed, see $PWD/log.pimpleFoam" >&2; exit 1; }
 """
-
-
-def rigid_flag(files):
-    """The fluid case for OpenFOAM's own pimpleFoam on a static mesh: no mesh motion, no
-    coupler; the flag a fixed wall."""
-    del files["0/pointDisplacement"], files["constant/dynamicMeshDict"]
-    files["0/U"] = files["0/U"].replace(
-        "flag         { type movingWallVelocity; value uniform (0 0 0); }",
-        "flag         { type noSlip; }")
-    files["system/controlDict"] = files["system/controlDict"].replace(
-        "application     cocoppPimpleFoam;", "application     pimpleFoam;")
-    files["Allrun"] = ALLRUN_RIGID
 
 
 CASE = """\

@@ -166,14 +166,15 @@ def main():
     args = parser.parse_args()
     made = json.loads((args.run / "turek_hron.json").read_text())
     test = made["test"]
+    coupled = test != "cfd3"  # cfd3: the fluid alone, forces only
     force_times, drag, lift = read_forces(args.run / "fluid", made["depth"])
     histories = {"drag": (force_times, drag), "lift": (force_times, lift)}
-    if test != "cfd3":  # the coupled tests: the tip too, and the coupling iterations
+    if coupled:  # the tip too, and the coupling iterations
         times, ux, uy, iterations = read_tip(args.run / "results/case.h5")
         histories = {"ux": (times, ux), "uy": (times, uy), **histories}
     table = evaluate(test, histories, args.periods)
     print_table(test, table)
-    if test != "cfd3":
+    if coupled:
         print(f"{test} coupling iterations per step {iterations.mean():.2f} over "
               f"{len(iterations)} steps (t = {times[-1]:g} s)")
         table["iterations_per_step"] = float(iterations.mean())
