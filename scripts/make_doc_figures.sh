@@ -27,6 +27,7 @@ figures=(
   "wire_drawing|OpenFOAM and CalculiX|75 min|docs/wire-drawing.md"
   "turek_hron_fsi1|OpenFOAM and CalculiX|4 min|docs/validation-turek-hron.md"
   "turek_hron_fsi2|OpenFOAM and CalculiX|35 min|docs/validation-turek-hron.md"
+  "turek_hron_fsi2_level2|OpenFOAM (2 MPI ranks) and CalculiX|60 min|docs/validation-turek-hron.md"
   "turek_hron_fsi3|OpenFOAM and CalculiX|30 min|docs/validation-turek-hron.md"
   "turek_hron_fsi3_bench|turek_hron_fsi3's run|45 min|docs/validation-turek-hron.md"
 )
@@ -93,6 +94,12 @@ make_turek_hron_fsi1() {
 make_turek_hron_fsi2() {
   "$root/examples/turek_hron/fsi/run.sh" fsi2
   publish "$root/examples/turek_hron/fsi/results/fsi2/turek-hron.png" turek-hron-fsi2.png
+}
+
+make_turek_hron_fsi2_level2() {
+  "$root/examples/turek_hron/fsi/run.sh" fsi2 --name fsi2_level2 --level 2 --dt 0.004 \
+    --pressure-rel-tol 0.05 --cores 2
+  publish "$root/examples/turek_hron/fsi/results/fsi2_level2/turek-hron.png" turek-hron-fsi2-level2.png
 }
 
 make_turek_hron_fsi3() {

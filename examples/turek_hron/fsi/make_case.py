@@ -2,7 +2,7 @@
 """Write a Turek-Hron FSI test as a cocopp case (docs/validation-turek-hron.md).
 
     make_case.py fsi1|fsi2|fsi3|cfd3 OUTPUT [--level 1] [--dt 0.001] [--end-time 15] [--q 10]
-                 [--tolerance 1e-7] [--alpha -0.1]
+                 [--tolerance 1e-7] [--alpha -0.1] [--pressure-rel-tol 0] [--cores 1]
 
 OUTPUT/fluid: the channel as an OpenFOAM case for cocoppPimpleFoam (make_mesh.py's blockMeshDict,
 its Allmesh runs blockMesh); OUTPUT/flag/flag.inp: the flag in CalculiX (../csm/make_flag.py);
@@ -109,7 +109,17 @@ def end_time_entry(rigid, end_time):
             f"endTime         {end_time + ENDTIME_MARGIN:.15g};\n")
 
 
-def fluid_files(test, level, dt, end_time, depth, pressure_rel_tol=0.0):
+def decompose_par_dict(cores):
+    """system/decomposeParDict for `cores` MPI ranks: slices across the channel. OpenFOAM's
+    `simple` method gives every slice the same number of cells (it sorts them by x), so the
+    fine cells around the cylinder and the flag are shared out evenly; scotch is a stub in
+    Debian's package."""
+    return (header("dictionary", "decomposeParDict") +
+            f"numberOfSubdomains {cores};\nmethod          simple;\n"
+            f"simpleCoeffs\n{{\n    n               ({cores} 1 1);\n    delta           0.001;\n}}\n")
+
+
+def fluid_files(test, level, dt, end_time, depth, pressure_rel_tol=0.0, cores=1):
     # cfd3: the flag a fixed wall on a static mesh, for OpenFOAM's own pimpleFoam (no coupler).
     rigid = test == "cfd3"
     flag_velocity = ("{ type noSlip; }" if rigid
@@ -180,6 +190,8 @@ def fluid_files(test, level, dt, end_time, depth, pressure_rel_tol=0.0):
         "    nNonOrthogonalCorrectors 1;\n    correctPhi      yes;\n}\n",
     }
     files.update(inlet_boundary_data(MEAN_INFLOW[test], depth))
+    if cores > 1:
+        files["system/decomposeParDict"] = decompose_par_dict(cores)
     files.update({"Allrun": ALLRUN_RIGID} if rigid else MESH_MOTION_FILES)
     return files
 
@@ -224,7 +236,7 @@ solver_wrappers:
     name: fluid
     working_directory: fluid
     boundary_names: [flag]
-    timeout: 600
+    timeout: 600{cores}
   - type: mapped                 # S: the loads -> the flag's displacement
     name: flag
     solver_wrapper:
@@ -243,8 +255,11 @@ solver_wrappers:
 """
 
 
-def case_file(test, level, dt, steps, q, tolerance, depth, command):
+def case_file(test, level, dt, steps, q, tolerance, depth, command, cores=1):
+    cores_entry = f"\n    cores: {cores}                     # MPI ranks (system/decomposeParDict)" \
+        if cores > 1 else ""
     return CASE.format(upper=test.upper(), command=command, level=level, depth=depth,
+                       cores=cores_entry,
                        cells=make_mesh.cell_count(level), dt=dt, steps=steps,
                        state_interval=max(1, round(0.5 / dt)), q=q, tolerance=tolerance)
 
@@ -263,7 +278,8 @@ def write_made(args, dt, end_time):
     (args.output / "turek_hron.json").write_text(json.dumps(
         {"test": args.test, "level": args.level, "dt": dt, "end_time": end_time,
          "depth": args.depth, "q": args.q, "tolerance": args.tolerance,
-         "alpha": args.alpha, "pressure_rel_tol": args.pressure_rel_tol}, indent=1) + "\n")
+         "alpha": args.alpha, "pressure_rel_tol": args.pressure_rel_tol,
+         "cores": args.cores}, indent=1) + "\n")
 
 
 def main():
@@ -282,13 +298,15 @@ def main():
     parser.add_argument("--pressure-rel-tol", type=float, default=0.0,
                         help="relative tolerance of the pressure correctors before the last "
                              "(0: every one to 1e-10)")
+    parser.add_argument("--cores", type=int, default=1,
+                        help="MPI ranks of the fluid (the coupled tests; decomposeParDict)")
     args = parser.parse_args()
     dt = args.dt or DEFAULT_DT[args.test]
     end_time = args.end_time or DEFAULT_END[args.test]
     steps = round(end_time / dt)
     command = "make_case.py " + " ".join(sys.argv[1:])
     write(args.output / "fluid", fluid_files(args.test, args.level, dt, end_time, args.depth,
-                                                 args.pressure_rel_tol))
+                                                 args.pressure_rel_tol, args.cores))
     if args.test == "cfd3":
         write_made(args, dt, end_time)
         print(f"make_case.py: {args.output}: cfd3 (the fluid alone, fluid/Allrun), level "
@@ -299,7 +317,7 @@ def main():
         make_flag.deck(args.test, 20 * args.level, 2 * args.level, dt, args.alpha))
     (args.output / "case.yaml").write_text(
         case_file(args.test, args.level, dt, steps, args.q, args.tolerance, args.depth,
-                  command))
+                  command, args.cores))
     write_made(args, dt, end_time)
     print(f"make_case.py: {args.output}: {args.test}, level {args.level}, "
           f"{make_mesh.cell_count(args.level)} cells, dt {dt}, {steps} steps")
