@@ -5,9 +5,10 @@
                                              cells make_mesh.py says, checkMesh passes (levels 1, 2)
     test_turek_hron_fsi.py fsi1 BIN_DIR SOURCE_DIR   FSI1 on level 1 to its steady state: u_y(A),
                                              drag and lift within 3 % of Turek & Hron, u_x within 5 %
-    test_turek_hron_fsi.py fsi3 BIN_DIR SOURCE_DIR   the first 0.1 s of FSI3 (50 steps): every step
-                                             converges, at most 4 coupling iterations a step, drag at
-                                             0.1 s as the level-1 run measured it (1 %)
+    test_turek_hron_fsi.py fsi3 BIN_DIR SOURCE_DIR   the first 0.1 s of FSI3 (50 steps), the fluid
+                                             on two MPI ranks: every step converges, at most 4
+                                             coupling iterations a step, drag at 0.1 s as the serial
+                                             level-1 run measured it (1 %)
     test_turek_hron_fsi.py cfd3 SOURCE_DIR   run.sh's cfd3 (the flag rigid, OpenFOAM's pimpleFoam,
                                              no coupler) to 0.1 s: its drag is the coupled FSI3's
                                              at 0.1 s, where the flag has hardly moved (0.5 %)
