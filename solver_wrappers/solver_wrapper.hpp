@@ -44,7 +44,11 @@ class SolverWrapper {
   /// change a solver's parameters (cocopp bench's solver_inputs) edit this file.
   virtual std::filesystem::path input_file() const { return {}; }
 
-  /// Start the solver and learn its interfaces (layout and initial values).
+  /// Begin starting the solver without waiting for it (launch its process), so that the
+  /// coupler can start both solvers side by side; initialize() finishes the start. Wrappers
+  /// with nothing to launch ahead leave it empty: initialize() alone does everything.
+  virtual void start() {}
+  /// Start the solver (if start() did not) and learn its interfaces (layout and initial values).
   virtual void initialize() = 0;
   virtual const Interface& input_interface() const = 0;
   virtual const Interface& output_interface() const = 0;
@@ -55,6 +59,16 @@ class SolverWrapper {
   virtual bool adopts_interfaces() const { return false; }
   virtual void adopt_interfaces(const Interface& /*input*/, const Interface& /*output*/) {}
 
+  /// From now on initialize_step(), finalize_step() and output_step() may return as soon as
+  /// the request is on its way; the solver's answer (or its error, named after that request
+  /// and step) is taken by complete_step_requests() or by the next request that waits for an
+  /// answer (solve(), save_restart(), finalize()). The coupler asks for this, so that both
+  /// solvers work on these requests side by side instead of one round trip after the other; a
+  /// caller that reads the solver's files after finalize_step() does not ask. Wrappers may
+  /// ignore it.
+  virtual void overlap_step_requests() {}
+  /// Wait for the answers to the requests sent so far (see overlap_step_requests()).
+  virtual void complete_step_requests() {}
   /// Advance to time step `step` (time = step * delta_t).
   virtual void initialize_step(int step, double time) = 0;
   /// One coupling iteration: solve the step with `input`, return the output interface.

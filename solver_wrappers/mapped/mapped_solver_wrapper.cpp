@@ -75,7 +75,10 @@ class MappedSolverWrapper : public SolverWrapper {
   void check_solver_input() const override { inner_->check_solver_input(); }
   std::filesystem::path input_file() const override { return inner_->input_file(); }
 
+  void start() override { inner_->start(); }
   void initialize() override { inner_->initialize(); }
+  void overlap_step_requests() override { inner_->overlap_step_requests(); }
+  void complete_step_requests() override { inner_->complete_step_requests(); }
   bool adopts_interfaces() const override { return true; }
 
   void adopt_interfaces(const Interface& input, const Interface& output) override {

@@ -105,11 +105,10 @@ auto ProcessSolverWrapper::guarded(const std::string& request_name, double timeo
 }
 
 template <class Decode>
-auto ProcessSolverWrapper::call(const std::string& request_name, const Frame* request,
-                                MessageType expected_reply, double timeout_seconds,
-                                Decode&& decode) {
+auto ProcessSolverWrapper::receive_reply(const std::string& request_name,
+                                         MessageType expected_reply, double timeout_seconds,
+                                         Decode&& decode) {
   return guarded(request_name, timeout_seconds, [&] {
-    if (request != nullptr) channel_->send(*request, timeout_seconds, alive_check());
     const Frame reply = channel_->receive(timeout_seconds, alive_check());
     const MessageType type = protocol::message_type(reply);
     if (type == MessageType::kError)
@@ -123,6 +122,52 @@ auto ProcessSolverWrapper::call(const std::string& request_name, const Frame* re
                                     protocol::message_name(expected_reply));
     return decode(reply);
   });
+}
+
+template <class Decode>
+auto ProcessSolverWrapper::call(const std::string& request_name, const Frame* request,
+                                MessageType expected_reply, double timeout_seconds,
+                                Decode&& decode) {
+  if (request != nullptr) send_request(request_name, *request, timeout_seconds);
+  collect_replies();  // the solver answers in order: the posted requests' replies come first
+  return receive_reply(request_name, expected_reply, timeout_seconds, decode);
+}
+
+void ProcessSolverWrapper::send_request(const std::string& request_name, const Frame& request,
+                                        double timeout_seconds) {
+  if (!posted_.empty()) {
+    try {
+      channel_->send(request, timeout_seconds, alive_check());
+      return;
+    } catch (const ChildExited&) {
+    } catch (const protocol::PeerClosed&) {
+    }
+    // The solver stopped after an earlier request: its reply says why (an ERROR is still in the
+    // pipe after the process has gone). If all were OK, the send below fails as it did.
+    collect_replies();
+  }
+  guarded(request_name, timeout_seconds,
+          [&] { channel_->send(request, timeout_seconds, alive_check()); });
+}
+
+void ProcessSolverWrapper::post(const std::string& request_name, const Frame& request) {
+  if (!overlap_step_requests_) {
+    call(request_name, &request, MessageType::kOk, timeout_, decode_ok);
+    return;
+  }
+  send_request(request_name, request, timeout_);
+  posted_.push_back({request_name, step_});
+}
+
+void ProcessSolverWrapper::collect_replies() {
+  const int step = step_;
+  while (!posted_.empty()) {
+    const PostedRequest posted = posted_.front();
+    posted_.pop_front();
+    step_ = posted.step;  // so that an error names the step the request was sent in
+    receive_reply(posted.name, MessageType::kOk, timeout_, decode_ok);
+  }
+  step_ = step;
 }
 
 ProcessSolverWrapper::ProcessSolverWrapper(const Settings& settings, const RunSettings& run,
@@ -226,11 +271,16 @@ int ProcessSolverWrapper::child_pid() const {
   return child_ ? child_->pid() : -1;
 }
 
-void ProcessSolverWrapper::initialize() {
+void ProcessSolverWrapper::start() {
   if (state_ != State::kNotStarted)
-    throw std::logic_error("solver '" + name_ + "' is initialized twice");
+    throw std::logic_error("solver '" + name_ + "' is started twice");
   check();
   launch();
+}
+
+void ProcessSolverWrapper::initialize() {
+  if (initialized_) throw std::logic_error("solver '" + name_ + "' is initialized twice");
+  if (state_ == State::kNotStarted) start();
   wait_for_hello();
   const Frame request = protocol::encode_initialize({run_.delta_t, run_.timestep_start});
   build_interfaces(
@@ -239,6 +289,7 @@ void ProcessSolverWrapper::initialize() {
   // is a corrupt stream, refused before it is read.
   const auto data_frame = 1 + 8 + 8 * static_cast<std::size_t>(output_interface_.size());
   channel_->set_max_payload(std::max(data_frame, 1 + 4 + protocol::kMaxReceivedText));
+  initialized_ = true;
 }
 
 void ProcessSolverWrapper::launch() {
@@ -319,7 +370,7 @@ void ProcessSolverWrapper::initialize_step(int step, double time) {
   step_started_ = true;
   iteration_ = 0;
   const Frame request = protocol::encode_initialize_step({step, time});
-  call("initialize_step", &request, MessageType::kOk, timeout_, decode_ok);
+  post("initialize_step", request);
 }
 
 const Interface& ProcessSolverWrapper::solve(const Interface& input) {
@@ -357,12 +408,12 @@ void ProcessSolverWrapper::start_reporting_convergence() {
 
 void ProcessSolverWrapper::finalize_step() {
   const Frame request = protocol::encode_empty(MessageType::kFinalizeStep);
-  call("finalize_step", &request, MessageType::kOk, timeout_, decode_ok);
+  post("finalize_step", request);
 }
 
 void ProcessSolverWrapper::output_step() {
   const Frame request = protocol::encode_empty(MessageType::kOutputStep);
-  call("output_step", &request, MessageType::kOk, timeout_, decode_ok);
+  post("output_step", request);
 }
 
 void ProcessSolverWrapper::save_restart(int step) {
@@ -371,7 +422,9 @@ void ProcessSolverWrapper::save_restart(int step) {
 }
 
 void ProcessSolverWrapper::finalize() {
-  if (state_ != State::kRunning) {  // never started, already finalized, or failed
+  // Never started, started but never initialized (the other solver failed first: this one was
+  // never connected), already finalized, or failed.
+  if (state_ != State::kRunning || !initialized_) {
     release();
     return;
   }

@@ -11,6 +11,7 @@
 // group, removes the channel and throws a SolverError that names the solver and quotes the end
 // of its log. finalize() is safe to call at any time, more than once; the destructor calls it.
 #include <cstdint>
+#include <deque>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -58,9 +59,12 @@ class ProcessSolverWrapper : public SolverWrapper {
   void check() const override;
   std::filesystem::path input_file() const override;
 
+  void start() override;
   void initialize() override;
   const Interface& input_interface() const override { return input_interface_; }
   const Interface& output_interface() const override { return output_interface_; }
+  void overlap_step_requests() override { overlap_step_requests_ = true; }
+  void complete_step_requests() override { collect_replies(); }
   void initialize_step(int step, double time) override;
   const Interface& solve(const Interface& input) override;
   /// Sends REPORT_CONVERGENCE; a solver that cannot tell answers ERROR with the reason.
@@ -94,6 +98,18 @@ class ProcessSolverWrapper : public SolverWrapper {
   template <class Decode>
   auto call(const std::string& request_name, const protocol::Frame* request,
             protocol::MessageType expected_reply, double timeout_seconds, Decode&& decode);
+  /// Wait for the reply to the request sent last, check it and return decode(reply).
+  template <class Decode>
+  auto receive_reply(const std::string& request_name, protocol::MessageType expected_reply,
+                     double timeout_seconds, Decode&& decode);
+  /// A step request whose OK is taken later (overlap_step_requests), or at once otherwise.
+  void post(const std::string& request_name, const protocol::Frame& request);
+  /// Send a request, after the replies still owed if the solver is gone (they say why).
+  void send_request(const std::string& request_name, const protocol::Frame& request,
+                    double timeout_seconds);
+  /// Take the replies still owed to posted requests, in order; an error is named after its
+  /// request and the step it was sent in.
+  void collect_replies();
   /// Run one exchange with the solver, turning each way it can fail into a SolverError.
   template <class Exchange>
   auto guarded(const std::string& request_name, double timeout_seconds, Exchange&& exchange);
@@ -134,12 +150,19 @@ class ProcessSolverWrapper : public SolverWrapper {
 
   // While running.
   State state_ = State::kNotStarted;
+  bool initialized_ = false;  ///< it said HELLO and gave its interfaces
   std::unique_ptr<protocol::Transport> channel_;
   std::unique_ptr<ChildProcess> child_;
   std::int64_t solver_pid_ = -1;
   int step_ = 0;
   bool step_started_ = false;
   int iteration_ = 0;
+  bool overlap_step_requests_ = false;
+  struct PostedRequest {
+    std::string name;
+    int step;
+  };
+  std::deque<PostedRequest> posted_;  ///< sent, their OK not yet read
   bool reporting_convergence_ = false;
   bool converged_at_first_iteration_ = false;
   Interface input_interface_;

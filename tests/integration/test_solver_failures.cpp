@@ -83,6 +83,29 @@ TEST(SolverFailures, CrashIsReportedWithTheLogTail) {
   fs::remove_all(dir);
 }
 
+// The coupler sends a step's initialize_step, finalize_step and output_step to both solvers
+// without waiting for each answer (they overlap): a failure in one of them is still reported
+// in its own step, named after its request.
+TEST(SolverFailures, AFailureInAnOverlappedStepRequestIsReportedInItsStep) {
+  struct Case {
+    std::string fail, request, expected;
+  };
+  for (const Case& c : {Case{"error", "output_step", "requested error at step 3"},
+                        Case{"crash", "finalize_step", "signal 11"},
+                        Case{"error", "initialize_step", "requested error at step 3"}}) {
+    SCOPED_TRACE(c.fail + " in " + c.request);
+    const fs::path dir = failing_case("overlapped_" + c.request,
+                                      "fail " + c.fail + "\nfail_step 3\nfail_in " + c.request);
+    const CommandResult run = run_cocopp("run " + (dir / "case.yaml").string());
+    EXPECT_EQ(run.exit_code, 1) << run.output;
+    EXPECT_NE(run.output.find(c.expected), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("during " + c.request + " at step 3"), std::string::npos)
+        << run.output;
+    expect_stopped(dir, "solver_failed", 2, "solver failure in step 3");
+    fs::remove_all(dir);
+  }
+}
+
 TEST(SolverFailures, HangIsStoppedAfterTheTimeout) {
   const fs::path dir = failing_case("hang", "fail hang\nfail_step 2", "    timeout: 1");
   const CommandResult run = run_cocopp("run " + (dir / "case.yaml").string());

@@ -10,6 +10,8 @@
 //   fail none           none | crash | hang | nan | error | exit | reject
 //   fail_step 1         step at which to fail; 0 = during initialize
 //   fail_iteration 1    coupling iteration (solve call within the step, from 1) at which to fail
+//   fail_in solve       solve | initialize_step | finalize_step | output_step: the request in
+//                       which to fail at fail_step (fail_iteration counts for solve only)
 // crash = SIGSEGV, hang = sleep forever, nan = NaN outputs, error = throw, exit = exit(3),
 // reject = reject that input (sdk::InputRejected) and serve on.
 #include <unistd.h>
@@ -42,6 +44,7 @@ struct Options {
   std::string fail = "none";
   int fail_step = 1;
   int fail_iteration = 1;
+  std::string fail_in = "solve";
   std::size_t error_bytes = 0;  ///< > 0: the error text is this long, with escape sequences
 };
 
@@ -59,6 +62,8 @@ Options read_options(const std::string& file) {
       in >> options.fail_step;
     else if (key == "fail_iteration")
       in >> options.fail_iteration;
+    else if (key == "fail_in")
+      in >> options.fail_in;
     else if (key == "error_bytes")
       in >> options.error_bytes;
     else
@@ -69,6 +74,10 @@ Options read_options(const std::string& file) {
                                               "error", "exit",  "reject"};
   if (!modes.count(options.fail))
     throw std::runtime_error("test solver: unknown fail mode '" + options.fail + "'");
+  static const std::set<std::string> requests = {"solve", "initialize_step", "finalize_step",
+                                                 "output_step"};
+  if (!requests.count(options.fail_in))
+    throw std::runtime_error("test solver: unknown request '" + options.fail_in + "'");
   if (options.points < 0) throw std::runtime_error("test solver: points must be >= 0");
   return options;
 }
@@ -109,12 +118,14 @@ class TestSolver : public cocopp::sdk::Solver {
     step_ = step;
     iteration_ = 0;
     std::cout << "test solver: step " << step << ", time " << time << std::endl;
+    fail_in("initialize_step");
   }
 
   std::vector<double> solve(const std::vector<double>& displacement) override {
     ++iteration_;
     std::cout << "test solver: step " << step_ << " iteration " << iteration_ << std::endl;
-    const bool failing = step_ == options_.fail_step && iteration_ == options_.fail_iteration;
+    const bool failing = options_.fail_in == "solve" && step_ == options_.fail_step &&
+                         iteration_ == options_.fail_iteration;
     if (failing) fail_now();
     const std::size_t n = displacement.size() / 3;
     std::vector<double> output(4 * n);
@@ -126,11 +137,17 @@ class TestSolver : public cocopp::sdk::Solver {
     return output;
   }
 
-  void finalize_step() override {}
+  void finalize_step() override { fail_in("finalize_step"); }
+  void output_step() override { fail_in("output_step"); }
   void finalize() override { std::cout << "test solver: finalize" << std::endl; }
 
  private:
   static double nan() { return std::numeric_limits<double>::quiet_NaN(); }
+
+  /// Fail here if this is the request and step asked for (nan and reject do not apply).
+  void fail_in(const std::string& request) {
+    if (options_.fail_in == request && step_ == options_.fail_step) fail_now();
+  }
 
   /// The failures that do not return (nan is applied by the caller).
   void fail_now() {
