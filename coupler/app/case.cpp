@@ -122,6 +122,8 @@ Case load_case(const std::filesystem::path& file, bool restart) {
   c.results_name =
       settings.has("results_name") ? settings.get_name("results_name", "") : file.stem().string();
   c.state_interval = settings.get_int_in_range("state_interval", 0, 0);
+  c.results_write_interval =
+      settings.get_in_range("results_write_interval", 0.0, Range::closed(0.0, 3600.0));
   c.vtk_output = settings.get<bool>("vtk_output", false);
   for (const double step : settings.get<std::vector<double>>("vtk_iterations", {})) {
     if (step < 1 || step != std::floor(step) || step > 1e9)

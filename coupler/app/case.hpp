@@ -26,6 +26,8 @@ struct Case {
   std::vector<int> vtk_iterations;  ///< steps whose every coupling iteration is written too
   Watchpoints watchpoints;          ///< settings.watchpoints: variables at points, every step
   int state_interval = 0;           ///< also save the coupled-solver state every this many steps
+  /// s of wall time: steps faster than this are written to the results file together
+  double results_write_interval = 0.0;
   /// The solvers' working directories named in the case (the run locks them).
   std::vector<std::filesystem::path> working_directories;
   /// A restarted run: the saved state it continues from (run.timestep_start is its step).

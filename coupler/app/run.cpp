@@ -171,6 +171,7 @@ class Run {
           std::make_unique<ResultsWriter>(results_path(".h5"), describe_run(case_), coupled.x(),
                                           coupled.y(), case_.watchpoints.layout());
     }
+    writer_->set_write_interval(case_.results_write_interval);
     if (case_.vtk_output)
       vtk_ = std::make_unique<VtkSeries>(case_.results_directory, case_.results_name,
                                          case_.restart ? case_.restart->step : -1);
@@ -276,6 +277,8 @@ class Run {
 
   /// Between steps only: in the middle of a step the models hold half a step's columns.
   void save_state(int step) {
+    // A restart continues the results file after the state's step: it must be in the file.
+    writer_->write_kept_steps();
     // The solvers first: a state file always has the solvers' restart data behind it.
     case_.coupled_solver->save_solver_restarts(step);
     SavedState saved;

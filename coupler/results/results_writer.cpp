@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <ctime>
+#include <exception>
 #include <stdexcept>
 #include <utility>
 
@@ -395,20 +396,33 @@ void ResultsWriter::write_step(const StepRecord& record, const Interface& x, con
   if (!is_open())
     throw std::logic_error("results file '" + path_.string() + "': write_step after close");
   check_step(record, x, y, watchpoints);
-  check_space(record, x, y);
+  kept_.push_back({record, x.data(), y.data(), watchpoints.data()});
+  kept_values_ += static_cast<std::size_t>(x.size() + y.size() + watchpoints.size()) +
+                  record.residual_norms.size();
+  const std::chrono::duration<double> since_write = std::chrono::steady_clock::now() - last_write_;
+  constexpr std::size_t kMaxKeptValues = 8 << 20;  // 64 MB of doubles
+  if (since_write.count() >= write_interval_ || kept_values_ >= kMaxKeptValues) write_kept_steps();
+}
+
+void ResultsWriter::write_kept_steps() {
+  if (kept_.empty() || !is_open()) return;
+  check_space();
   const QuietErrors quiet;
   try {
-    write_interface(x_blocks_, x);
-    write_interface(y_blocks_, y);
-    if (!watchpoint_blocks_.empty()) write_interface(watchpoint_blocks_, watchpoints);
-    write_residuals(record);
-    write_step_scalars(record);
+    write_interface(x_blocks_, &KeptStep::x);
+    write_interface(y_blocks_, &KeptStep::y);
+    if (!watchpoint_blocks_.empty()) write_interface(watchpoint_blocks_, &KeptStep::watchpoints);
+    write_residuals();
+    write_step_scalars();
     flush();
   } catch (const H5Error& error) {
     fail(error);
   }
-  ++rows_;
-  norms_written_ += record.residual_norms.size();
+  rows_ += static_cast<int>(kept_.size());
+  for (const auto& step : kept_) norms_written_ += step.record.residual_norms.size();
+  kept_.clear();
+  kept_values_ = 0;
+  last_write_ = std::chrono::steady_clock::now();
 }
 
 void ResultsWriter::check_step(const StepRecord& record, const Interface& x, const Interface& y,
@@ -437,55 +451,87 @@ void ResultsWriter::check_step(const StepRecord& record, const Interface& x, con
 // HDF5 leaves a file it could not finish writing (its metadata half updated) unreadable, and
 // with it every step flushed before. So a step is written only where the disk clearly has
 // room for it and for closing the file; otherwise the run stops with the file as it was.
-void ResultsWriter::check_space(const StepRecord& record, const Interface& x,
-                                const Interface& y) const {
+void ResultsWriter::check_space() const {
   struct statvfs disk {};
   const auto directory = path_.has_parent_path() ? path_.parent_path() : ".";
   if (::statvfs(directory.c_str(), &disk) != 0) return;  // nothing known: write and see
   const std::uint64_t available = std::uint64_t(disk.f_bavail) * disk.f_frsize;
-  const std::uint64_t values = std::uint64_t(x.size() + y.size()) + record.residual_norms.size();
   // Chunks may be allocated whole, and metadata grows with them: a generous multiple.
-  const std::uint64_t needed = 4 * 8 * (values + 16) + kClosingReserveBytes;
+  const std::uint64_t needed = 4 * 8 * (kept_values_ + 16 * kept_.size()) + kClosingReserveBytes;
+  const int first = kept_.front().record.step, last = kept_.back().record.step;
+  const std::string steps = first == last
+                                ? "step " + std::to_string(first)
+                                : "steps " + std::to_string(first) + " to " + std::to_string(last);
   if (available < needed)
     throw std::runtime_error("results file '" + path_.string() + "': the disk has " +
-                             std::to_string(available) + " bytes left, step " +
-                             std::to_string(record.step) + " and closing the file need about " +
-                             std::to_string(needed) +
-                             ": stopped before writing it, so that the steps written so far "
+                             std::to_string(available) + " bytes left, " + steps +
+                             " and closing the file need about " + std::to_string(needed) +
+                             ": stopped before writing them, so that the steps written so far "
                              "stay readable; free space and restart the run");
 }
 
 void ResultsWriter::write_interface(const std::vector<BlockSeries>& blocks,
-                                    const Interface& interface) {
-  for (const auto& b : blocks)
-    write_row(b.series, H5T_NATIVE_DOUBLE, interface.data().data() + b.block.offset);
+                                    Eigen::VectorXd KeptStep::*interface) {
+  for (const auto& b : blocks) {
+    const auto size = static_cast<std::size_t>(b.block.points * b.block.components);
+    write_kept<double>(b.series, H5T_NATIVE_DOUBLE, size, [&](const KeptStep& step) {
+      return (step.*interface).data() + b.block.offset;
+    });
+  }
 }
 
-void ResultsWriter::write_residuals(const StepRecord& record) {
-  const auto& norms = record.residual_norms;
+void ResultsWriter::write_residuals() {
+  std::vector<double> norms;
+  std::int64_t offset = static_cast<std::int64_t>(norms_written_);
+  std::vector<std::int64_t> offsets, counts;
+  for (const auto& step : kept_) {
+    const auto& step_norms = step.record.residual_norms;
+    norms.insert(norms.end(), step_norms.begin(), step_norms.end());
+    offsets.push_back(offset);
+    counts.push_back(static_cast<std::int64_t>(step_norms.size()));
+    offset += counts.back();
+  }
   write_rows(steps_.norms.dataset.get(), {}, norms_written_, norms.size(), H5T_NATIVE_DOUBLE,
              norms.data());
-  const std::int64_t offset = static_cast<std::int64_t>(norms_written_);
-  const std::int64_t count = static_cast<std::int64_t>(norms.size());
-  write_row(steps_.offset, H5T_NATIVE_INT64, &offset);
-  write_row(steps_.count, H5T_NATIVE_INT64, &count);
+  std::size_t i = 0;
+  write_kept<std::int64_t>(steps_.offset, H5T_NATIVE_INT64, 1,
+                           [&](const KeptStep&) { return &offsets[i++]; });
+  i = 0;
+  write_kept<std::int64_t>(steps_.count, H5T_NATIVE_INT64, 1,
+                           [&](const KeptStep&) { return &counts[i++]; });
 }
 
-void ResultsWriter::write_step_scalars(const StepRecord& record) {
-  const std::int8_t converged = record.converged ? 1 : 0;
+void ResultsWriter::write_step_scalars() {
   const H5Handle boolean = bool_type();
-  write_row(steps_.time, H5T_NATIVE_DOUBLE, &record.time);
-  write_row(steps_.iterations, H5T_NATIVE_INT, &record.iterations);
-  write_row(steps_.converged, boolean.get(), &converged);
-  write_row(steps_.wall_time, H5T_NATIVE_DOUBLE, &record.wall_time);
-  write_row(steps_.coupler_time, H5T_NATIVE_DOUBLE, &record.coupler_time);
-  write_row(steps_.solver_times, H5T_NATIVE_DOUBLE, record.solver_times.data());
+  std::vector<std::int8_t> converged;
+  for (const auto& step : kept_) converged.push_back(step.record.converged ? 1 : 0);
+  std::size_t i = 0;
+  const auto of = [](auto member) {
+    return [member](const KeptStep& step) { return &(step.record.*member); };
+  };
+  write_kept<double>(steps_.time, H5T_NATIVE_DOUBLE, 1, of(&StepRecord::time));
+  write_kept<int>(steps_.iterations, H5T_NATIVE_INT, 1, of(&StepRecord::iterations));
+  write_kept<std::int8_t>(steps_.converged, boolean.get(), 1,
+                          [&](const KeptStep&) { return &converged[i++]; });
+  write_kept<double>(steps_.wall_time, H5T_NATIVE_DOUBLE, 1, of(&StepRecord::wall_time));
+  write_kept<double>(steps_.coupler_time, H5T_NATIVE_DOUBLE, 1, of(&StepRecord::coupler_time));
+  write_kept<double>(steps_.solver_times, H5T_NATIVE_DOUBLE, solver_count_,
+                     [](const KeptStep& step) { return step.record.solver_times.data(); });
   // Last, so that the length of steps/step counts the rows that are complete everywhere.
-  write_row(steps_.step, H5T_NATIVE_INT, &record.step);
+  write_kept<int>(steps_.step, H5T_NATIVE_INT, 1, of(&StepRecord::step));
 }
 
-void ResultsWriter::write_row(const Series& series, hid_t memory_type, const void* data) {
-  write_rows(series.dataset.get(), series.row_shape, rows_, 1, memory_type, data);
+template <class T, class Value>
+void ResultsWriter::write_kept(const Series& series, hid_t memory_type, std::size_t row_size,
+                               Value value) {
+  std::vector<T> rows;
+  rows.reserve(kept_.size() * row_size);
+  for (const auto& step : kept_) {
+    const T* row = value(step);
+    rows.insert(rows.end(), row, row + row_size);
+  }
+  write_rows(series.dataset.get(), series.row_shape, static_cast<hsize_t>(rows_), kept_.size(),
+             memory_type, rows.data());
 }
 
 void ResultsWriter::flush() {
@@ -495,6 +541,7 @@ void ResultsWriter::flush() {
 void ResultsWriter::write_unfinished_step(int step, double time,
                                           const std::vector<double>& residual_norms) {
   if (!is_open()) return;
+  write_kept_steps();
   const QuietErrors quiet;
   try {
     const H5Handle group = create_group(file_.get(), "unfinished_step");
@@ -511,6 +558,15 @@ void ResultsWriter::write_unfinished_step(int step, double time,
 void ResultsWriter::close(const std::string& status, const std::string& message) {
   if (!is_open()) return;
   if (status.empty()) throw std::invalid_argument("results file status must not be empty");
+  // The kept steps first. If they cannot be written, the file still closes with its status
+  // and the steps written before, and the error follows.
+  std::exception_ptr kept_steps_error;
+  try {
+    write_kept_steps();
+  } catch (const std::exception&) {
+    kept_steps_error = std::current_exception();
+    kept_.clear();
+  }
   const QuietErrors quiet;
   try {
     const hid_t root = file_.get();
@@ -523,6 +579,7 @@ void ResultsWriter::close(const std::string& status, const std::string& message)
     release();
     fail(error);
   }
+  if (kept_steps_error) std::rethrow_exception(kept_steps_error);
 }
 
 herr_t ResultsWriter::release() {

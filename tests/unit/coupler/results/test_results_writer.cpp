@@ -187,6 +187,77 @@ TEST_F(ResultsWriterTest, AKilledRunLeavesAReadableFile) {
   EXPECT_EQ(h5.dataset("y/wall/traction").shape, (Shape{2, 4, 3}));
 }
 
+// With a write interval, steps are kept in memory and written together (the run's default for
+// fast steps): the file holds the same datasets as one written step by step, the kept steps
+// appear at write_kept_steps() and close(), and a run killed in between leaves a readable file
+// with the steps of the last write.
+TEST_F(ResultsWriterTest, KeptStepsAreWrittenTogetherAsIfStepByStep) {
+  constexpr int kSteps = 5;
+  const auto step_by_step = dir_ / "step_by_step.h5";
+  write_run(step_by_step, kSteps);
+  const auto kept = dir_ / "kept.h5";
+  const auto copy = dir_ / "copy.h5";
+  Interfaces interfaces = make_interfaces();
+  ResultsWriter writer(kept, make_run(kSteps), interfaces.x, interfaces.y);
+  writer.set_write_interval(3600.0);
+  auto write_steps = [&](int first, int last) {
+    for (int step = first; step <= last; ++step) {
+      fill(interfaces, step);
+      writer.write_step(make_record(step), interfaces.x, interfaces.y);
+    }
+  };
+  auto steps_on_disk = [&] {
+    std::filesystem::remove(copy);
+    std::filesystem::copy_file(kept, copy);
+    return ResultsReader(copy).dataset("steps/step").values;
+  };
+  write_steps(1, 2);
+  EXPECT_TRUE(steps_on_disk().empty());
+  EXPECT_EQ(writer.steps_written(), 2);
+  writer.write_kept_steps();
+  EXPECT_EQ(steps_on_disk(), (std::vector<double>{1, 2}));
+  write_steps(3, kSteps);
+  EXPECT_EQ(steps_on_disk(), (std::vector<double>{1, 2}));
+  writer.close("completed", "all 5 steps done");
+  EXPECT_EQ(writer.steps_written(), kSteps);
+
+  const ResultsReader expected(step_by_step), actual(kept);
+  for (const char* name :
+       {"x/wall/displacement", "x/inlet/displacement", "y/wall/pressure", "y/wall/traction",
+        "y/inlet/pressure", "steps/step", "steps/time", "steps/iterations", "steps/wall_time",
+        "steps/coupler_time", "steps/solver_times", "residuals/norms", "residuals/offset",
+        "residuals/count"}) {
+    EXPECT_EQ(actual.dataset(name).shape, expected.dataset(name).shape) << name;
+    EXPECT_EQ(actual.dataset(name).values, expected.dataset(name).values) << name;
+  }
+  EXPECT_EQ(actual.bools("steps/converged"), expected.bools("steps/converged"));
+  EXPECT_EQ(actual.numbers("/", "steps_written"), expected.numbers("/", "steps_written"));
+}
+
+TEST_F(ResultsWriterTest, AKilledRunWithKeptStepsLeavesTheStepsOfTheLastWrite) {
+  const auto file = dir_ / "run.h5";
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    Interfaces interfaces = make_interfaces();
+    ResultsWriter writer(file, make_run(3), interfaces.x, interfaces.y);
+    writer.set_write_interval(3600.0);
+    for (int step = 1; step <= 3; ++step) {
+      fill(interfaces, step);
+      writer.write_step(make_record(step), interfaces.x, interfaces.y);
+      if (step == 2) writer.write_kept_steps();
+    }
+    ::kill(::getpid(), SIGKILL);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+  const ResultsReader h5(file);
+  EXPECT_EQ(h5.string("/", "status"), "running");
+  EXPECT_EQ(h5.dataset("steps/step").values, (std::vector<double>{1, 2}));
+  EXPECT_EQ(h5.dataset("residuals/offset").values, (std::vector<double>{0, 3}));
+}
+
 TEST_F(ResultsWriterTest, DestructorMarksTheFileIncomplete) {
   const auto file = dir_ / "run.h5";
   { auto writer = write_run(file, 1, ""); }
