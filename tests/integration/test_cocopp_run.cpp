@@ -260,8 +260,8 @@ TEST(CocoppCheck, TypoInAKeyNamesFileLineAndSuggestion) {
   edit(dir / "case.yaml", "  omega: 0.05", "  omgea: 0.05");
   const CommandResult check = run_cocopp("check " + (dir / "case.yaml").string());
   EXPECT_EQ(check.exit_code, 2);
-  // The key is on line 10, column 3 of the example.
-  EXPECT_NE(check.output.find("case.yaml:10:3: unknown key 'coupled_solver.omgea'; did you mean "
+  // The key is on line 11, column 3 of the example.
+  EXPECT_NE(check.output.find("case.yaml:11:3: unknown key 'coupled_solver.omgea'; did you mean "
                               "'omega'?"),
             std::string::npos)
       << check.output;
@@ -481,7 +481,7 @@ TEST(CocoppCheck, PathsThatCannotBeUsedAreNamedInWordsAtTheirKey) {
     EXPECT_EQ(check.output.find("filesystem error"), std::string::npos) << check.output;
   };
   expect_error("working_directory: flow ", "working_directory: loop_a/flow ",
-               "case.yaml:27:24: solver 'flow': working directory " +
+               "case.yaml:28:24: solver 'flow': working directory " +
                    (dir / "loop_a/flow").string() + " is a loop of symbolic links");
   expect_error("working_directory: flow ", "working_directory: " + std::string(300, 'y') + " ",
                "has a name longer than the file system allows");
