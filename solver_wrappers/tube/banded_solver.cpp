@@ -24,26 +24,9 @@ BandedMatrix::BandedMatrix(int size, int lower, int upper)
       width_(2 * lower_ + upper_ + 1),
       values_(static_cast<std::size_t>(size_) * static_cast<std::size_t>(width_), 0.0) {}
 
-bool BandedMatrix::in_band(int row, int column) const {
-  return row >= 0 && row < size_ && column >= 0 && column < size_ && column - row <= upper_ &&
-         row - column <= lower_;
-}
-
-std::size_t BandedMatrix::index(int row, int column) const {
-  return static_cast<std::size_t>(row) * static_cast<std::size_t>(width_) +
-         static_cast<std::size_t>(column - row + lower_);
-}
-
-double& BandedMatrix::operator()(int row, int column) {
-  if (!in_band(row, column)) {
-    throw std::out_of_range("BandedMatrix: entry (" + std::to_string(row) + ", " +
-                            std::to_string(column) + ") outside the band");
-  }
-  return storage(row, column);
-}
-
-double BandedMatrix::operator()(int row, int column) const {
-  return in_band(row, column) ? storage(row, column) : 0.0;
+void BandedMatrix::throw_outside_band(int row, int column) {
+  throw std::out_of_range("BandedMatrix: entry (" + std::to_string(row) + ", " +
+                          std::to_string(column) + ") outside the band");
 }
 
 Eigen::MatrixXd BandedMatrix::to_dense() const {
@@ -133,8 +116,8 @@ Eigen::VectorXd BandedLu::solve(const Eigen::VectorXd& rhs) const {
   return x;
 }
 
-Eigen::VectorXd solve_banded(const BandedMatrix& matrix, const Eigen::VectorXd& rhs) {
-  return BandedLu(matrix).solve(rhs);
+Eigen::VectorXd solve_banded(BandedMatrix matrix, const Eigen::VectorXd& rhs) {
+  return BandedLu(std::move(matrix)).solve(rhs);  // a Jacobian just built: no copy
 }
 
 }  // namespace cocopp::tube

@@ -16,11 +16,20 @@ class BandedMatrix {
   int lower() const { return lower_; }
   int upper() const { return upper_; }
 
-  /// Entry (row, column); both must lie inside the band.
-  double& operator()(int row, int column);
-  double operator()(int row, int column) const;
+  /// Entry (row, column); both must lie inside the band (std::out_of_range otherwise). Inline:
+  /// the flow solver assembles its Jacobian through it, 3600 entries a solve.
+  double& operator()(int row, int column) {
+    if (!in_band(row, column)) throw_outside_band(row, column);
+    return storage(row, column);
+  }
+  double operator()(int row, int column) const {
+    return in_band(row, column) ? storage(row, column) : 0.0;
+  }
   /// True if (row, column) lies inside the band given at construction.
-  bool in_band(int row, int column) const;
+  bool in_band(int row, int column) const {
+    return row >= 0 && row < size_ && column >= 0 && column < size_ && column - row <= upper_ &&
+           row - column <= lower_;
+  }
 
   Eigen::MatrixXd to_dense() const;
   Eigen::VectorXd multiply(const Eigen::VectorXd& x) const;
@@ -31,7 +40,11 @@ class BandedMatrix {
   // extra super-diagonals): entry (i, j) lives at i * width_ + (j - i + lower_).
   double& storage(int row, int column) { return values_[index(row, column)]; }
   double storage(int row, int column) const { return values_[index(row, column)]; }
-  std::size_t index(int row, int column) const;
+  std::size_t index(int row, int column) const {
+    return static_cast<std::size_t>(row) * static_cast<std::size_t>(width_) +
+           static_cast<std::size_t>(column - row + lower_);
+  }
+  [[noreturn]] static void throw_outside_band(int row, int column);
 
   int size_;
   int lower_;
@@ -59,6 +72,6 @@ class BandedLu {
 };
 
 /// Solve A x = b for a banded A (factor and solve once).
-Eigen::VectorXd solve_banded(const BandedMatrix& matrix, const Eigen::VectorXd& rhs);
+Eigen::VectorXd solve_banded(BandedMatrix matrix, const Eigen::VectorXd& rhs);
 
 }  // namespace cocopp::tube
