@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <poll.h>
+#include <sched.h>
 #include <sys/stat.h>
 #include <sys/uio.h>
 #include <unistd.h>
@@ -56,10 +57,11 @@ std::unique_ptr<PipeTransport> PipeTransport::create_for_coupler(
 
 std::unique_ptr<PipeTransport> PipeTransport::open_for_solver(
     const std::filesystem::path& directory, double timeout_seconds,
-    const AliveCheck& still_alive_check) {
+    const AliveCheck& still_alive_check, std::chrono::microseconds busy_wait) {
   ignore_sigpipe();
   std::unique_ptr<PipeTransport> transport(new PipeTransport(
       directory / kToSolverFifo, directory / kFromSolverFifo, "coupler", /*owns_fifos=*/false));
+  transport->busy_wait_ = busy_wait;
   transport->open_read_end();
   transport->connect(timeout_seconds, still_alive_check);
   return transport;
@@ -136,7 +138,9 @@ void PipeTransport::read_exactly(std::uint8_t* data, std::size_t size, const Dea
       size -= static_cast<std::size_t>(got);
     } else if (got == 0) {
       throw PeerClosed("the " + peer_ + " closed the pipe");
-    } else if (errno != EINTR && errno != EAGAIN) {
+    } else if (errno == EAGAIN) {
+      ::sched_yield();  // nothing yet: let a process with work have the core
+    } else if (errno != EINTR) {
       throw TransportError(system_error_text("cannot read " + read_path_.string(), errno));
     }
   }

@@ -36,10 +36,11 @@ class PipeTransport final : public Transport {
   static std::unique_ptr<PipeTransport> create_for_coupler(
       const std::filesystem::path& directory,
       std::chrono::microseconds busy_wait = std::chrono::microseconds(0));
-  /// Open the FIFOs the coupler created in `directory`.
-  static std::unique_ptr<PipeTransport> open_for_solver(const std::filesystem::path& directory,
-                                                        double timeout_seconds,
-                                                        const AliveCheck& still_alive_check);
+  /// Open the FIFOs the coupler created in `directory`. `busy_wait` as for the coupler.
+  static std::unique_ptr<PipeTransport> open_for_solver(
+      const std::filesystem::path& directory, double timeout_seconds,
+      const AliveCheck& still_alive_check,
+      std::chrono::microseconds busy_wait = std::chrono::microseconds(0));
 
   ~PipeTransport() override;
   PipeTransport(const PipeTransport&) = delete;
@@ -49,10 +50,11 @@ class PipeTransport final : public Transport {
   using Transport::send;
   void send(const Frame& frame, double timeout_seconds,
             const AliveCheck& still_alive_check) override;
-  /// Waits for the next frame. For up to `busy_wait` (coupler side) it reads without sleeping:
-  /// a reply that comes within it costs no process wake-up (about 50 us on a loaded machine),
-  /// which on a fast solver is most of a coupling iteration; a slower reply costs at most
-  /// `busy_wait` of CPU.
+  /// Waits for the next frame. For up to `busy_wait` it reads without sleeping: a message that
+  /// comes within it costs no process wake-up (about 50 us on a loaded machine), which on a
+  /// fast solver is most of a coupling iteration; a slower one costs at most `busy_wait` of
+  /// CPU. Between reads it yields its core, which a process with work may need: with fewer
+  /// cores than processes a spin that did not yield slowed the tube run tenfold.
   Frame receive(double timeout_seconds, const AliveCheck& still_alive_check) override;
 
  private:

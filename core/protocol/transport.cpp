@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 #include "core/protocol/file_transport.hpp"
@@ -29,10 +30,22 @@ std::unique_ptr<Transport> create_coupler_channel(TransportKind kind,
 std::unique_ptr<Transport> open_solver_channel(TransportKind kind,
                                                const std::filesystem::path& directory,
                                                double timeout_seconds,
-                                               const AliveCheck& still_alive_check) {
+                                               const AliveCheck& still_alive_check,
+                                               std::chrono::microseconds busy_wait) {
   if (kind == TransportKind::kPipe)
-    return PipeTransport::open_for_solver(directory, timeout_seconds, still_alive_check);
+    return PipeTransport::open_for_solver(directory, timeout_seconds, still_alive_check, busy_wait);
   return FileTransport::open_for_solver(directory);
+}
+
+std::chrono::microseconds busy_wait_from_environment() {
+  const char* text = std::getenv(kBusyWaitVariable);
+  if (text == nullptr || *text == '\0') return std::chrono::microseconds(0);
+  char* end = nullptr;
+  const double seconds = std::strtod(text, &end);
+  if (end == text || *end != '\0' || !(seconds >= 0.0 && seconds <= 0.1))
+    throw TransportError(std::string(kBusyWaitVariable) + "='" + text +
+                         "' is not a number of seconds in [0, 0.1]");
+  return std::chrono::microseconds(std::llround(1e6 * seconds));
 }
 
 Deadline::Deadline(double seconds) : forever_(!std::isfinite(seconds)) {

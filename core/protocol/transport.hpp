@@ -30,6 +30,8 @@ constexpr std::chrono::milliseconds kAliveCheckInterval{100};
 /// Environment variables through which the coupler tells a solver where its channel is.
 constexpr const char* kTransportVariable = "COCOPP_TRANSPORT";  ///< "pipe" or "file"
 constexpr const char* kChannelVariable = "COCOPP_CHANNEL";      ///< absolute directory
+/// Seconds the solver reads its request pipe without sleeping ("0.001"; unset: 0).
+constexpr const char* kBusyWaitVariable = "COCOPP_BUSY_WAIT";
 
 /// The channel cannot be used (I/O error, missing FIFO, ...).
 class TransportError : public std::runtime_error {
@@ -92,11 +94,14 @@ std::unique_ptr<Transport> create_coupler_channel(
     TransportKind kind, const std::filesystem::path& directory,
     std::chrono::microseconds busy_wait = std::chrono::microseconds(0));
 
-/// Solver side: open the channel the coupler created in `directory`.
-std::unique_ptr<Transport> open_solver_channel(TransportKind kind,
-                                               const std::filesystem::path& directory,
-                                               double timeout_seconds,
-                                               const AliveCheck& still_alive_check);
+/// Solver side: open the channel the coupler created in `directory`; `busy_wait` as above.
+std::unique_ptr<Transport> open_solver_channel(
+    TransportKind kind, const std::filesystem::path& directory, double timeout_seconds,
+    const AliveCheck& still_alive_check,
+    std::chrono::microseconds busy_wait = std::chrono::microseconds(0));
+/// The solver's busy wait from $COCOPP_BUSY_WAIT (seconds; unset: 0). Throws TransportError
+/// for a value that is not a number in [0, 0.1].
+std::chrono::microseconds busy_wait_from_environment();
 
 /// A point in time `seconds` from now (never, for infinity).
 class Deadline {

@@ -191,6 +191,11 @@ ProcessSolverWrapper::ProcessSolverWrapper(const Settings& settings, const RunSe
   // (docs/benchmarks.md); on slow ones it costs at most this much CPU per message.
   busy_wait_ = std::chrono::microseconds(
       std::llround(1e6 * settings.get_in_range("busy_wait", 1e-3, Range::closed(0.0, 0.1))));
+  // The solver's side of the same (SDK solvers, pipe transport): worth it where the machine has
+  // a core for the waiting solver or the solvers are fast (docs/solver-wrappers.md).
+  solver_busy_wait_ = settings.get_in_range(
+      "solver_busy_wait", default_command ? default_command->solver_busy_wait : 0.0,
+      Range::closed(0.0, 0.1));
   log_file_ = working_directory_ / settings.get<std::string>("log_file", name_ + ".log");
 }
 
@@ -302,6 +307,9 @@ void ProcessSolverWrapper::launch() {
     options.environment = {
         {protocol::kTransportVariable, protocol::transport_name(transport_kind_)},
         {protocol::kChannelVariable, working_directory_.string()}};
+    if (solver_busy_wait_ > 0.0)
+      options.environment.emplace_back(protocol::kBusyWaitVariable,
+                                       fmt::format("{}", solver_busy_wait_));
     for (const auto& [variable, value] : default_environment_)
       if (std::getenv(variable.c_str()) == nullptr)
         options.environment.emplace_back(variable, value);

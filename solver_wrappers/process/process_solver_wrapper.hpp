@@ -41,6 +41,8 @@ struct DefaultCommand {
   /// Reads the solver's input file as the solver will and throws CaseError (file, line, key)
   /// if it would refuse it: `cocopp check` then finds a typo there, not `run`. Optional.
   std::function<void(const std::filesystem::path&)> check_input;
+  /// Default of `solver_busy_wait` (s): the built-in solvers answer within microseconds.
+  double solver_busy_wait = 0.0;
 };
 
 class ProcessSolverWrapper : public SolverWrapper {
@@ -140,6 +142,7 @@ class ProcessSolverWrapper : public SolverWrapper {
   double timeout_ = 600.0;
   double startup_timeout_ = 60.0;
   std::chrono::microseconds busy_wait_{1000};  ///< of the pipe transport's receive
+  double solver_busy_wait_ = 0.0;              ///< s, the solver's, through $COCOPP_BUSY_WAIT
   std::filesystem::path log_file_;
   std::vector<std::pair<std::string, std::string>> default_environment_;
   // Where in the case file, for check() errors.

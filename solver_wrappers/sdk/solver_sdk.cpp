@@ -229,11 +229,12 @@ int serve(Solver& solver, int argc, char** argv) {
   const pid_t coupler_pid = ::getppid();
   std::unique_ptr<protocol::Transport> link;
   try {
-    link = protocol::open_solver_channel(protocol::parse_transport_kind(transport), channel,
-                                         kConnectTimeoutSeconds, [coupler_pid] {
-                                           if (::getppid() != coupler_pid)
-                                             throw protocol::PeerClosed("the coupler has exited");
-                                         });
+    link = protocol::open_solver_channel(
+        protocol::parse_transport_kind(transport), channel, kConnectTimeoutSeconds,
+        [coupler_pid] {
+          if (::getppid() != coupler_pid) throw protocol::PeerClosed("the coupler has exited");
+        },
+        protocol::busy_wait_from_environment());
   } catch (const std::exception& e) {
     std::cerr << program << ": cannot connect to the cocopp coupler: " << e.what() << "\n";
     return 1;

@@ -18,6 +18,10 @@ void check_input_file(const std::filesystem::path& file) {
   (void)tube::load_input_file<Parameters>(file.string());
 }
 
+/// The tube solvers answer a request in tens of microseconds: waiting for the next one
+/// without sleeping saves a process wake-up per request (docs/solver-wrappers.md).
+constexpr double kBuiltinSolverBusyWait = 1e-3;
+
 bool register_builtin_solver(const std::string& type, const std::string& executable,
                              const std::string& input_file,
                              std::function<void(const std::filesystem::path&)> check_input) {
@@ -26,8 +30,12 @@ bool register_builtin_solver(const std::string& type, const std::string& executa
       [=](const Settings& settings, const RunSettings& run) -> std::unique_ptr<SolverWrapper> {
         return std::make_unique<ProcessSolverWrapper>(
             settings, run,
-            DefaultCommand{
-                builtin_solver_directory() / executable, input_file, {}, {}, check_input});
+            DefaultCommand{builtin_solver_directory() / executable,
+                           input_file,
+                           {},
+                           {},
+                           check_input,
+                           kBuiltinSolverBusyWait});
       });
 }
 

@@ -90,6 +90,8 @@ class TestSolver : public cocopp::sdk::Solver {
     options_ = read_options(input_file_);
     std::cout << "test solver: initialize, delta_t " << run.delta_t << ", timestep_start "
               << run.timestep_start << ", " << options_.points << " points" << std::endl;
+    if (const char* busy_wait = std::getenv("COCOPP_BUSY_WAIT"))
+      std::cout << "test solver: COCOPP_BUSY_WAIT=" << busy_wait << std::endl;
     cocopp::sdk::ModelPart wall;
     wall.name = "wall";
     wall.input_variables = {"displacement"};

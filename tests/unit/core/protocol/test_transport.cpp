@@ -7,7 +7,9 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdlib>
 #include <thread>
+#include <vector>
 
 #include "core/protocol/file_transport.hpp"
 #include "core/protocol/messages.hpp"
@@ -325,6 +327,51 @@ TEST(PipeTransportTest, BusyWaitingReceiveGetsRepliesWithinAndAfterTheBusyWait) 
   EXPECT_EQ(decode_data(coupler->receive(10.0, nullptr)), ramp(3));
   EXPECT_EQ(decode_data(coupler->receive(10.0, nullptr)), ramp(100000));
   solver.join();
+}
+
+// The solver's busy wait ($COCOPP_BUSY_WAIT, settings.solver_busy_wait): requests that come
+// within it and long after it arrive whole and in order at a solver that reads without sleeping.
+TEST(PipeTransportTest, BusyWaitingSolverGetsRequestsWithinAndAfterTheBusyWait) {
+  TemporaryDirectory directory;
+  auto coupler = create_coupler_channel(TransportKind::kPipe, directory.path());
+  std::vector<double> received_first, received_second;
+  std::thread solver([&] {
+    auto channel = open_solver_channel(TransportKind::kPipe, directory.path(), 10.0, nullptr,
+                                       std::chrono::microseconds(2000));
+    received_first = decode_data(channel->receive(10.0, nullptr));
+    received_second = decode_data(channel->receive(10.0, nullptr));
+  });
+  coupler->connect(10.0, nullptr);
+  coupler->send(encode_data(ramp(3)), 10.0, nullptr);
+  std::this_thread::sleep_for(std::chrono::milliseconds(30));  // long after the busy wait
+  coupler->send(encode_data(ramp(100000)), 10.0, nullptr);     // more than a pipe holds
+  solver.join();
+  EXPECT_EQ(received_first, ramp(3));
+  EXPECT_EQ(received_second, ramp(100000));
+}
+
+TEST(PipeTransportTest, TheSolversBusyWaitComesFromTheEnvironmentAndIsChecked) {
+  const char* saved = std::getenv(kBusyWaitVariable);
+  const std::string saved_value = saved != nullptr ? saved : "";
+  ::unsetenv(kBusyWaitVariable);
+  EXPECT_EQ(busy_wait_from_environment(), std::chrono::microseconds(0));
+  ::setenv(kBusyWaitVariable, "0.001", 1);
+  EXPECT_EQ(busy_wait_from_environment(), std::chrono::microseconds(1000));
+  for (const char* bad : {"fast", "0.5", "-1", "1e-3s"}) {
+    ::setenv(kBusyWaitVariable, bad, 1);
+    try {
+      busy_wait_from_environment();
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const TransportError& e) {
+      EXPECT_NE(std::string(e.what()).find(std::string("COCOPP_BUSY_WAIT='") + bad + "'"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  if (saved != nullptr)
+    ::setenv(kBusyWaitVariable, saved_value.c_str(), 1);
+  else
+    ::unsetenv(kBusyWaitVariable);
 }
 
 // A solver that goes away while the coupler busy-waits is reported as such, at once.

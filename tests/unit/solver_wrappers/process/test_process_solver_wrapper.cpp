@@ -146,6 +146,36 @@ TEST_P(ProcessSolverWrapperTest, RunsStepsAndStops) {
   EXPECT_CONTAINS(log, "test solver: finalize");
 }
 
+// As the coupler runs a solver: its step requests overlapped (their replies read with the
+// next request) and, with `solver_busy_wait`, the solver reading its requests without
+// sleeping (pipe transport): the same answers, a clean stop.
+TEST_P(ProcessSolverWrapperTest, OverlappedStepRequestsAndTheSolversBusyWaitGiveTheSameAnswers) {
+  auto& wrapper = start("points 3\n", "solver_busy_wait: 0.002\n");
+  wrapper.initialize();
+  wrapper.overlap_step_requests();
+  Interface input = wrapper.input_interface();
+  for (int step = 1; step <= 4; ++step) {
+    wrapper.initialize_step(step, step * run_.delta_t);
+    for (int iteration = 1; iteration <= 3; ++iteration) {
+      const double amplitude = 1e-4 * iteration;
+      set_y_displacement(input, amplitude);
+      const auto pressure = wrapper.solve(input).values("wall", "pressure");
+      for (Eigen::Index i = 0; i < 3; ++i)
+        EXPECT_DOUBLE_EQ(pressure(i, 0), 1000.0 * amplitude * (i + 1) + step);
+    }
+    wrapper.finalize_step();
+    wrapper.output_step();
+    wrapper.complete_step_requests();
+  }
+  wrapper.finalize_step();  // a request still in flight when the solver is stopped
+  wrapper.finalize();
+  expect_cleaned_up(wrapper);
+  const std::string log = read_text(directory_ / "flow/flow.log");
+  EXPECT_CONTAINS(log, "test solver: COCOPP_BUSY_WAIT=0.002");
+  EXPECT_CONTAINS(log, "test solver: step 4 iteration 3");
+  EXPECT_CONTAINS(log, "test solver: finalize");
+}
+
 TEST_P(ProcessSolverWrapperTest, NaNValuesArriveAsNaN) {
   auto& wrapper = start("points 3\nfail nan\nfail_step 1\nfail_iteration 2\n");
   wrapper.initialize();
