@@ -7,6 +7,7 @@
 #include <cctype>
 #include <csignal>
 #include <fstream>
+#include <functional>
 
 #include "coupler/results/results_writer.hpp"
 #include "tests/support/error_message.hpp"
@@ -23,6 +24,20 @@ class ResultsWriterTest : public ::testing::Test {
   void SetUp() override { dir_ = test_directory(); }
   std::filesystem::path dir_;
 };
+
+/// Runs `write` in a child process that then dies by SIGKILL (no destructor, no close: as if
+/// the machine killed the run), and waits for it.
+void written_by_a_killed_process(const std::function<void()>& write) {
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    write();
+    ::kill(::getpid(), SIGKILL);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+}
 
 /// "2026-11-22T00:37:54Z" (no std::regex: GCC 12 warns falsely on it under sanitizers).
 bool is_iso_utc_time(const std::string& text) {
@@ -172,25 +187,17 @@ TEST_F(ResultsWriterTest, CopyTakenAfterFlushWhileOpenIsReadable) {
 
 TEST_F(ResultsWriterTest, AKilledRunLeavesAReadableFile) {
   const auto file = dir_ / "run.h5";
-  const pid_t child = ::fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
-    auto writer = write_run(file, 2, "");
-    ::kill(::getpid(), SIGKILL);  // no destructor, no close: as if the machine killed the run
-  }
-  int status = 0;
-  ASSERT_EQ(::waitpid(child, &status, 0), child);
-  ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+  // released, not destroyed: the process dies with the file open
+  written_by_a_killed_process([&] { (void)write_run(file, 2, "").release(); });
   const ResultsReader h5(file);
   EXPECT_EQ(h5.string("/", "status"), "running");
   EXPECT_EQ(h5.dataset("steps/step").values, (std::vector<double>{1, 2}));
   EXPECT_EQ(h5.dataset("y/wall/traction").shape, (Shape{2, 4, 3}));
 }
 
-// With a write interval, steps are kept in memory and written together (the run's default for
-// fast steps): the file holds the same datasets as one written step by step, the kept steps
-// appear at write_kept_steps() and close(), and a run killed in between leaves a readable file
-// with the steps of the last write.
+// With a write interval (settings.results_write_interval), steps are kept in memory and written
+// together: the file holds the same datasets as one written step by step, and the kept steps
+// appear at write_kept_steps() and close().
 TEST_F(ResultsWriterTest, KeptStepsAreWrittenTogetherAsIfStepByStep) {
   constexpr int kSteps = 5;
   const auto step_by_step = dir_ / "step_by_step.h5";
@@ -236,22 +243,17 @@ TEST_F(ResultsWriterTest, KeptStepsAreWrittenTogetherAsIfStepByStep) {
 
 TEST_F(ResultsWriterTest, AKilledRunWithKeptStepsLeavesTheStepsOfTheLastWrite) {
   const auto file = dir_ / "run.h5";
-  const pid_t child = ::fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
+  written_by_a_killed_process([&] {
     Interfaces interfaces = make_interfaces();
-    ResultsWriter writer(file, make_run(3), interfaces.x, interfaces.y);
-    writer.set_write_interval(3600.0);
+    // never destroyed: the process dies with the file open
+    auto* writer = new ResultsWriter(file, make_run(3), interfaces.x, interfaces.y);
+    writer->set_write_interval(3600.0);
     for (int step = 1; step <= 3; ++step) {
       fill(interfaces, step);
-      writer.write_step(make_record(step), interfaces.x, interfaces.y);
-      if (step == 2) writer.write_kept_steps();
+      writer->write_step(make_record(step), interfaces.x, interfaces.y);
+      if (step == 2) writer->write_kept_steps();
     }
-    ::kill(::getpid(), SIGKILL);
-  }
-  int status = 0;
-  ASSERT_EQ(::waitpid(child, &status, 0), child);
-  ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+  });
   const ResultsReader h5(file);
   EXPECT_EQ(h5.string("/", "status"), "running");
   EXPECT_EQ(h5.dataset("steps/step").values, (std::vector<double>{1, 2}));
