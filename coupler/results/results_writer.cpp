@@ -493,26 +493,20 @@ void ResultsWriter::write_residuals() {
   }
   write_rows(steps_.norms.dataset.get(), {}, norms_written_, norms.size(), H5T_NATIVE_DOUBLE,
              norms.data());
-  std::size_t i = 0;
-  write_kept<std::int64_t>(steps_.offset, H5T_NATIVE_INT64, 1,
-                           [&](const KeptStep&) { return &offsets[i++]; });
-  i = 0;
-  write_kept<std::int64_t>(steps_.count, H5T_NATIVE_INT64, 1,
-                           [&](const KeptStep&) { return &counts[i++]; });
+  write_kept_rows(steps_.offset, H5T_NATIVE_INT64, offsets.data());
+  write_kept_rows(steps_.count, H5T_NATIVE_INT64, counts.data());
 }
 
 void ResultsWriter::write_step_scalars() {
   const H5Handle boolean = bool_type();
   std::vector<std::int8_t> converged;
   for (const auto& step : kept_) converged.push_back(step.record.converged ? 1 : 0);
-  std::size_t i = 0;
   const auto of = [](auto member) {
     return [member](const KeptStep& step) { return &(step.record.*member); };
   };
   write_kept<double>(steps_.time, H5T_NATIVE_DOUBLE, 1, of(&StepRecord::time));
   write_kept<int>(steps_.iterations, H5T_NATIVE_INT, 1, of(&StepRecord::iterations));
-  write_kept<std::int8_t>(steps_.converged, boolean.get(), 1,
-                          [&](const KeptStep&) { return &converged[i++]; });
+  write_kept_rows(steps_.converged, boolean.get(), converged.data());
   write_kept<double>(steps_.wall_time, H5T_NATIVE_DOUBLE, 1, of(&StepRecord::wall_time));
   write_kept<double>(steps_.coupler_time, H5T_NATIVE_DOUBLE, 1, of(&StepRecord::coupler_time));
   write_kept<double>(steps_.solver_times, H5T_NATIVE_DOUBLE, solver_count_,
@@ -530,8 +524,12 @@ void ResultsWriter::write_kept(const Series& series, hid_t memory_type, std::siz
     const T* row = value(step);
     rows.insert(rows.end(), row, row + row_size);
   }
+  write_kept_rows(series, memory_type, rows.data());
+}
+
+void ResultsWriter::write_kept_rows(const Series& series, hid_t memory_type, const void* rows) {
   write_rows(series.dataset.get(), series.row_shape, static_cast<hsize_t>(rows_), kept_.size(),
-             memory_type, rows.data());
+             memory_type, rows);
 }
 
 void ResultsWriter::flush() {

@@ -116,6 +116,8 @@ class ResultsWriter {
   /// One value (of `row_size` elements) per kept step, from `value`, as rows rows_, ... .
   template <class T, class Value>
   void write_kept(const Series& series, hid_t memory_type, std::size_t row_size, Value value);
+  /// The kept steps' rows of `series`, laid out one after the other in `rows`.
+  void write_kept_rows(const Series& series, hid_t memory_type, const void* rows);
   void flush();
   /// Closes every handle, the file last; returns the status of closing the file.
   herr_t release();
