@@ -149,9 +149,14 @@ void QrFactorization::rotate(Eigen::Index i, double c, double s, Eigen::Index fr
     r_(i, j) = c * upper + s * lower;
     r_(i + 1, j) = -s * upper + c * lower;
   }
-  const Eigen::VectorXd left = u_.col(i);
-  u_.col(i) = c * left + s * u_.col(i + 1);
-  u_.col(i + 1) = -s * left + c * u_.col(i + 1);
+  // In place: a temporary column cost an allocation for each of an insertion's k rotations.
+  double* left = u_.col(i).data();
+  double* right = u_.col(i + 1).data();
+  for (Eigen::Index row = 0; row < u_.rows(); ++row) {
+    const double a = left[row], b = right[row];
+    left[row] = c * a + s * b;
+    right[row] = -s * a + c * b;
+  }
 }
 
 void QrFactorization::remove(Eigen::Index j) {
