@@ -12,9 +12,15 @@ copies; results I/O and start-up excluded) next to the total coupler time per it
 
 --coupled-solver replaces the case's coupled solver (YAML, its predictor and convergence
 criterion kept unless given), so that every coupled solver is timed on the same case.
+
+--instructions also runs the coupler once under valgrind's callgrind (Debian's valgrind) and
+reports the instructions it executes per coupling iteration in its time steps, outside the
+calls into its solver wrappers: the work behind "coupler time per iteration", counted without
+the noise of a shared machine, so that two builds compare on one run each.
 """
 import argparse
 import json
+import re
 import shutil
 import statistics
 import subprocess
@@ -51,6 +57,43 @@ def run_once(cocopp, example, case, coupled_solver):
         return wall, summary
 
 
+# The calls of a time step that are the solvers' time (the coupler's timed() calls): the tube
+# cases' solvers are process wrappers without mapping.
+SOLVER_CALLS = re.compile(r"cocopp::ProcessSolverWrapper::(solve|initialize_step|finalize_step|"
+                          r"output_step|complete_step_requests)\(")
+
+
+def coupler_instructions(cocopp, example, case, coupled_solver):
+    """Instructions per coupling iteration in CoupledSolver::solve_step outside solver calls."""
+    if not shutil.which("valgrind"):
+        raise SystemExit("--instructions needs valgrind (apt-get install valgrind)")
+    with tempfile.TemporaryDirectory(prefix="cocopp_bench_") as tmp:
+        work = Path(tmp) / "case"
+        shutil.copytree(example, work, ignore=shutil.ignore_patterns("results", "*.log", "output"))
+        if coupled_solver:
+            replace_coupled_solver(work / case, coupled_solver)
+        profile = Path(tmp) / "callgrind.out"
+        subprocess.run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={profile}",
+                        str(cocopp), "run", "-q", str(work / case)], check=True,
+                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        summary = json.loads((work / "results" / (Path(case).stem + ".summary.json")).read_text())
+        listing = subprocess.run(["callgrind_annotate", "--inclusive=yes", "--threshold=100",
+                                  str(profile)], check=True, capture_output=True, text=True).stdout
+    step, solvers = None, 0
+    for line in listing.splitlines():
+        match = re.match(r"\s*([\d,]+) \(.*?\)\s+\S*?:(.*)", line)
+        if not match:
+            continue
+        count, function = int(match.group(1).replace(",", "")), match.group(2)
+        if function.startswith("cocopp::CoupledSolver::solve_step("):
+            step = count
+        elif SOLVER_CALLS.match(function):
+            solvers += count
+    if step is None:
+        raise SystemExit("callgrind's listing has no CoupledSolver::solve_step")
+    return (step - solvers) / sum(summary["iterations_per_step"])
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -59,6 +102,8 @@ def main():
     parser.add_argument("--example", default=str(ROOT / "examples/tube/flow_structure"))
     parser.add_argument("--case", default="case.yaml", help="case file inside the example")
     parser.add_argument("--coupled-solver", help="the coupled solver to use instead (YAML)")
+    parser.add_argument("--instructions", action="store_true",
+                        help="also count the coupler's instructions per iteration (callgrind)")
     args = parser.parse_args()
 
     cocopp = Path(args.build) / "bin" / "cocopp"
@@ -82,6 +127,10 @@ def main():
     print(f"  incl. start-up and I/O   : median {statistics.median(coupler) * 1e6:8.1f} us")
     print("solver time (last run)     : " +
           ", ".join(f"{name} {t * 1e3:.1f} ms" for name, t in solver_times.items()))
+    if args.instructions:
+        count = coupler_instructions(cocopp, args.example, args.case, args.coupled_solver)
+        print(f"coupler instructions per iteration (callgrind, inside the time steps, outside "
+              f"solver calls): {count / 1e3:.1f} k")
 
 
 if __name__ == "__main__":

@@ -16,6 +16,7 @@ packages=(
   python3-h5py python3-matplotlib python3-numpy python3-yaml python3-pil
   python3-vtk9  # a real VTK reader for the ParaView output's test
   clang-format
+  valgrind  # bench/tube_run.py --instructions counts the coupler's instructions (callgrind)
   clang-14 libclang-rt-14-dev  # libFuzzer for the fuzz targets (scripts/fuzz.sh)
 )
 
