@@ -57,10 +57,12 @@ def run_once(cocopp, example, case, coupled_solver):
         return wall, summary
 
 
-# The calls of a time step that are the solvers' time (the coupler's timed() calls): the tube
-# cases' solvers are process wrappers without mapping.
+# The calls of a time step that are the solvers' time (the coupler's timed() calls), for solvers
+# that are process wrappers without mapping, as the tube's. A mapped or CalculiX wrapper calls
+# these from its own, whose time (the mapping's too) the coupler counts as the solver's.
 SOLVER_CALLS = re.compile(r"cocopp::ProcessSolverWrapper::(solve|initialize_step|finalize_step|"
                           r"output_step|complete_step_requests)\(")
+OTHER_WRAPPERS = re.compile(r"cocopp::.*(MappedSolverWrapper|CalculixSolverWrapper)::")
 
 
 def coupler_instructions(cocopp, example, case, coupled_solver):
@@ -85,12 +87,16 @@ def coupler_instructions(cocopp, example, case, coupled_solver):
         if not match:
             continue
         count, function = int(match.group(1).replace(",", "")), match.group(2)
+        if OTHER_WRAPPERS.match(function):
+            raise SystemExit("--instructions counts cases whose solvers are process wrappers "
+                             f"without mapping; this one calls {function.split('(')[0]}")
         if function.startswith("cocopp::CoupledSolver::solve_step("):
             step = count
         elif SOLVER_CALLS.match(function):
             solvers += count
-    if step is None:
-        raise SystemExit("callgrind's listing has no CoupledSolver::solve_step")
+    if step is None or solvers == 0:
+        raise SystemExit("callgrind's listing has no CoupledSolver::solve_step or no call of a "
+                         "ProcessSolverWrapper in it")
     return (step - solvers) / sum(summary["iterations_per_step"])
 
 
