@@ -87,9 +87,9 @@ def coupler_instructions(cocopp, example, case, coupled_solver):
         if not match:
             continue
         count, function = int(match.group(1).replace(",", "")), match.group(2)
-        if OTHER_WRAPPERS.match(function):
+        if other := OTHER_WRAPPERS.match(function):
             raise SystemExit("--instructions counts cases whose solvers are process wrappers "
-                             f"without mapping; this one calls {function.split('(')[0]}")
+                             f"without mapping; this one has a {other.group(1)}")
         if function.startswith("cocopp::CoupledSolver::solve_step("):
             step = count
         elif SOLVER_CALLS.match(function):
