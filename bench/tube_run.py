@@ -19,6 +19,7 @@ calls into its solver wrappers: the work behind "coupler time per iteration", co
 the noise of a shared machine, so that two builds compare on one run each.
 """
 import argparse
+import contextlib
 import json
 import re
 import shutil
@@ -43,18 +44,29 @@ def replace_coupled_solver(case_file, coupled_solver):
     case_file.write_text(yaml.safe_dump(case, sort_keys=False))
 
 
-def run_once(cocopp, example, case, coupled_solver):
+@contextlib.contextmanager
+def fresh_case(example, case, coupled_solver):
+    """A temporary copy of the example (without earlier results), its coupled solver replaced
+    if one is given; yields the copy's directory."""
     with tempfile.TemporaryDirectory(prefix="cocopp_bench_") as tmp:
         work = Path(tmp) / "case"
         shutil.copytree(example, work, ignore=shutil.ignore_patterns("results", "*.log", "output"))
         if coupled_solver:
             replace_coupled_solver(work / case, coupled_solver)
+        yield work
+
+
+def run_summary(work, case):
+    return json.loads((work / "results" / (Path(case).stem + ".summary.json")).read_text())
+
+
+def run_once(cocopp, example, case, coupled_solver):
+    with fresh_case(example, case, coupled_solver) as work:
         start = time.perf_counter()
         subprocess.run([str(cocopp), "run", "-q", str(work / case)], check=True,
                        stdout=subprocess.DEVNULL)
         wall = time.perf_counter() - start
-        summary = json.loads((work / "results" / (Path(case).stem + ".summary.json")).read_text())
-        return wall, summary
+        return wall, run_summary(work, case)
 
 
 # The calls of a time step that are the solvers' time (the coupler's timed() calls), for solvers
@@ -69,16 +81,12 @@ def coupler_instructions(cocopp, example, case, coupled_solver):
     """Instructions per coupling iteration in CoupledSolver::solve_step outside solver calls."""
     if not shutil.which("valgrind"):
         raise SystemExit("--instructions needs valgrind (apt-get install valgrind)")
-    with tempfile.TemporaryDirectory(prefix="cocopp_bench_") as tmp:
-        work = Path(tmp) / "case"
-        shutil.copytree(example, work, ignore=shutil.ignore_patterns("results", "*.log", "output"))
-        if coupled_solver:
-            replace_coupled_solver(work / case, coupled_solver)
-        profile = Path(tmp) / "callgrind.out"
+    with fresh_case(example, case, coupled_solver) as work:
+        profile = work.parent / "callgrind.out"
         subprocess.run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={profile}",
                         str(cocopp), "run", "-q", str(work / case)], check=True,
                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        summary = json.loads((work / "results" / (Path(case).stem + ".summary.json")).read_text())
+        summary = run_summary(work, case)
         listing = subprocess.run(["callgrind_annotate", "--inclusive=yes", "--threshold=100",
                                   str(profile)], check=True, capture_output=True, text=True).stdout
     step, solvers = None, 0
