@@ -30,15 +30,13 @@ CcxRestartSupport restart_support(const std::filesystem::path& executable,
   options.working_directory = scratch_directory;
   options.log_file = scratch_directory / "cocopp_ccx_version.log";
   options.truncate_log = true;
+  std::string version;
   try {
-    ChildProcess ccx(options);
-    if (!ccx.wait_for_exit(10.0)) ccx.stop(kStopGraceSeconds);
+    version = run_to_end(options, 10.0).output;
   } catch (const std::runtime_error&) {
     return {};
   }
   // The version line the patches print (01-... and 02-restart-axisymmetry.patch).
-  const std::string version = read_text(options.log_file);
-  std::filesystem::remove(options.log_file);
   const auto says = [&](const char* text) { return version.find(text) != std::string::npos; };
   return {says("cocopp: restart files keep the state variables"),
           says("cocopp: restart files keep the state variables and the axisymmetry flag")};

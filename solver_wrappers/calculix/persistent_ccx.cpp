@@ -89,7 +89,7 @@ void PersistentCcx::start(const RunSettings& run, double end_time) {
   write_deck(end_time);
   write_interface();
   DefaultCommand command{
-      options_.executable, "", {"-i", kJob}, ccx_thread_environment(options_.threads), nullptr};
+      options_.executable, "", {"-i", kJob}, ccx_thread_environment(options_.threads), {}};
   // ccx's Fortran writes unbuffered: in the log in order with its C output (cocopp-ccx makes
   // stdout line-buffered), so that its last lines say why it stopped; in the .dat file as each
   // step commits.

@@ -334,6 +334,24 @@ void kill_all_children() noexcept {
   }
 }
 
+CommandOutput run_to_end(const ChildOptions& options, double timeout_seconds) {
+  constexpr double kStopGraceSeconds = 1.0;
+  CommandOutput result;
+  {
+    ChildProcess child(options);
+    result.finished = child.wait_for_exit(timeout_seconds);
+    if (!result.finished) child.stop(kStopGraceSeconds);
+    result.exit_code = child.exit_code();
+    result.exit_description = child.describe_exit();
+  }
+  std::ifstream in(options.log_file, std::ios::binary);
+  result.output.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  in.close();
+  std::error_code ignored;
+  std::filesystem::remove(options.log_file, ignored);
+  return result;
+}
+
 std::string read_last_lines(const std::filesystem::path& file, std::size_t count) {
   // The tail of a long log is all we need: read at most its last 64 KiB.
   constexpr std::streamoff kTailBytes = 1 << 16;

@@ -67,6 +67,20 @@ std::filesystem::path find_executable(const std::string& command,
 /// meant for the coupler's SIGINT/SIGTERM handler.
 void kill_all_children() noexcept;
 
+/// A short command run to its end (a version query, an input check): whether it ended within
+/// the time given (else it was stopped), how, and everything it printed.
+struct CommandOutput {
+  bool finished = false;
+  int exit_code = -1;            ///< ChildProcess::exit_code()
+  std::string exit_description;  ///< ChildProcess::describe_exit()
+  std::string output;            ///< stdout and stderr
+};
+
+/// Runs `options.command` to its end, at most `timeout_seconds`, with its output in
+/// `options.log_file`, which is read into the result and removed. Throws std::runtime_error if
+/// the command cannot start.
+CommandOutput run_to_end(const ChildOptions& options, double timeout_seconds);
+
 /// The last `count` lines of a text file ("" if it is missing or empty).
 std::string read_last_lines(const std::filesystem::path& file, std::size_t count);
 

@@ -1,8 +1,10 @@
 #include "solver_wrappers/process/process_solver_wrapper.hpp"
 
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -182,7 +184,8 @@ ProcessSolverWrapper::ProcessSolverWrapper(const Settings& settings, const RunSe
   read_command(settings, default_command);
   if (default_command) default_environment_ = default_command->environment;
   // The built-in check reads the default input file format: not with a command of the user's.
-  if (default_command && !settings.has("command")) check_input_ = default_command->check_input;
+  if (default_command && !settings.has("command"))
+    check_arguments_ = default_command->check_arguments;
   transport_kind_ =
       protocol::parse_transport_kind(settings.get_choice("transport", "pipe", {"pipe", "file"}));
   timeout_ = settings.get_in_range("timeout", 600.0, Range::timeout());  // seconds
@@ -264,8 +267,31 @@ void ProcessSolverWrapper::check() const {
     throw CaseError(input_file_where_ + ": " + solver + "input file " + input.string() + " " + why);
 }
 
+// The solver itself reads the file, in its working directory as a run starts it: the coupler
+// never links a solver's code, and the message is the one the run would end with.
 void ProcessSolverWrapper::check_solver_input() const {
-  if (check_input_ && !input_file_.empty()) check_input_(working_directory_ / input_file_);
+  if (check_arguments_.empty() || input_file_.empty()) return;
+  constexpr double kCheckTimeout = 60.0;  // s; reading an input file takes milliseconds
+  ChildOptions options;
+  options.command = {command_[0]};
+  options.command.insert(options.command.end(), check_arguments_.begin(), check_arguments_.end());
+  options.command.push_back(input_file_);
+  options.working_directory = working_directory_;
+  // Outside the working directory: `cocopp check` writes nothing into the case.
+  options.log_file = std::filesystem::temp_directory_path() /
+                     fmt::format("cocopp_check_{}_{}.log", ::getpid(), name_);
+  const CommandOutput check = run_to_end(options, kCheckTimeout);
+  if (check.finished && check.exit_code == 0) return;
+  const std::string command = join(options.command, " ");
+  if (!check.finished)
+    throw CaseError(
+        fmt::format("{}: solver '{}': `{}` did not finish within {:g} s and was stopped",
+                    input_file_where_, name_, command, kCheckTimeout));
+  std::string output = check.output;
+  while (!output.empty() && std::isspace(static_cast<unsigned char>(output.back())))
+    output.pop_back();
+  throw CaseError(fmt::format("{}: solver '{}' refuses its input file (`{}` {}):\n{}",
+                              input_file_where_, name_, command, check.exit_description, output));
 }
 
 std::filesystem::path ProcessSolverWrapper::input_file() const {

@@ -38,9 +38,10 @@ struct DefaultCommand {
   /// Variables the solver needs, added to its environment unless the coupler's sets them
   /// (whether or not the case file gives its own `command`).
   std::vector<std::pair<std::string, std::string>> environment;
-  /// Reads the solver's input file as the solver will and throws CaseError (file, line, key)
-  /// if it would refuse it: `cocopp check` then finds a typo there, not `run`. Optional.
-  std::function<void(const std::filesystem::path&)> check_input;
+  /// Arguments that make the executable read its input file (given after them) as a run would,
+  /// report what it refuses and exit (the tube solvers' `--check`): `cocopp check` then finds a
+  /// typo there, not `run`. Empty: the solver has no such check.
+  std::vector<std::string> check_arguments;
   /// Default of `solver_busy_wait` (s): the built-in solvers answer within microseconds.
   double solver_busy_wait = 0.0;
 };
@@ -131,7 +132,7 @@ class ProcessSolverWrapper : public SolverWrapper {
   std::string log_tail() const;
 
   // From the case file.
-  std::function<void(const std::filesystem::path&)> check_input_;
+  std::vector<std::string> check_arguments_;  ///< DefaultCommand::check_arguments
   std::string name_;
   bool name_given_ = false;      ///< `name` is in the case
   bool log_file_given_ = false;  ///< `log_file` is in the case

@@ -7,9 +7,11 @@
 namespace {
 
 constexpr const char* kUsage = R"(usage: cocopp-tube-flow [INPUT_FILE]
+       cocopp-tube-flow --check [INPUT_FILE]
 
 1D incompressible, inviscid flow in a flexible tube, driven by the cocopp coupler.
 INPUT_FILE defaults to tube_flow.yaml in the working directory.
+--check reads INPUT_FILE as a run would, says what it refuses and exits (`cocopp check` asks).
 Interface: model part `wall` (m points at the cell centres); input `displacement` (the y
 component is the radial displacement), output `pressure` (Pa) and `traction` (zero).
 
@@ -47,7 +49,7 @@ restart/tube_flow_<step>.restart; a restarted run (timestep_start > 0) reads it 
 
 int main(int argc, char** argv) {
   using namespace cocopp::tube;
-  return run_tube_solver<TubeFlow, FlowSide>(
+  return run_tube_solver<TubeFlow, FlowSide, TubeFlowParameters>(
       argc, argv, "tube_flow", kUsage, "tube_flow.yaml",
       [](const std::string& input_file, const cocopp::sdk::RunInfo& run) {
         return std::make_unique<TubeFlow>(TubeFlowParameters::load(input_file), run.delta_t,

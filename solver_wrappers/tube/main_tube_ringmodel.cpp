@@ -8,9 +8,11 @@
 namespace {
 
 constexpr const char* kUsage = R"(usage: cocopp-tube-ringmodel [INPUT_FILE]
+       cocopp-tube-ringmodel --check [INPUT_FILE]
 
 The wall of a 1D flexible tube as independent massless rings (a tube law), driven by the
 cocopp coupler. INPUT_FILE defaults to tube_ringmodel.yaml in the working directory.
+--check reads INPUT_FILE as a run would, says what it refuses and exits (`cocopp check` asks).
 Interface: model part `wall` (m points at the cell centres); input `pressure` (Pa) and
 `traction` (ignored), output `displacement` (0, radial displacement, 0).
 
@@ -38,7 +40,7 @@ restart/tube_ringmodel_<step>.restart; a restarted run (timestep_start > 0) read
 
 int main(int argc, char** argv) {
   using namespace cocopp::tube;
-  return run_tube_solver<TubeRingmodel, WallSide>(
+  return run_tube_solver<TubeRingmodel, WallSide, TubeRingmodelParameters>(
       argc, argv, "tube_ringmodel", kUsage, "tube_ringmodel.yaml",
       [](const std::string& input_file, const cocopp::sdk::RunInfo& run) {
         return std::make_unique<TubeRingmodel>(TubeRingmodelParameters::load(input_file),

@@ -8,9 +8,11 @@
 namespace {
 
 constexpr const char* kUsage = R"(usage: cocopp-tube-structure [INPUT_FILE]
+       cocopp-tube-structure --check [INPUT_FILE]
 
 The wall of a 1D flexible tube (ring with inertia and bending, clamped ends), driven by the
 cocopp coupler. INPUT_FILE defaults to tube_structure.yaml in the working directory.
+--check reads INPUT_FILE as a run would, says what it refuses and exits (`cocopp check` asks).
 Interface: model part `wall` (m points at the cell centres); input `pressure` (Pa) and
 `traction` (ignored), output `displacement` (0, radial displacement, 0).
 
@@ -43,7 +45,7 @@ restart/tube_structure_<step>.restart; a restarted run (timestep_start > 0) read
 
 int main(int argc, char** argv) {
   using namespace cocopp::tube;
-  return run_tube_solver<TubeStructure, WallSide>(
+  return run_tube_solver<TubeStructure, WallSide, TubeStructureParameters>(
       argc, argv, "tube_structure", kUsage, "tube_structure.yaml",
       [](const std::string& input_file, const cocopp::sdk::RunInfo& run) {
         return std::make_unique<TubeStructure>(TubeStructureParameters::load(input_file),

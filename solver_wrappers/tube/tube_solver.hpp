@@ -115,15 +115,32 @@ class TubeSolver : public sdk::Solver {
   double delta_t_ = 0.0;
 };
 
-/// main() of a tube solver executable: --help prints `usage`, else serve the coupler with the
-/// model `make` builds from the input file (argv[1] or `default_input`).
-template <class Model, class Side, class Make>
+/// `--check [INPUT_FILE]`: read the input file as a run would and say what is wrong (exit 1)
+/// or that it is fine (exit 0); `cocopp check` asks the solver so.
+template <class Parameters>
+int check_input_file(const std::string& input_file) {
+  try {
+    (void)Parameters::load(input_file);
+  } catch (const std::exception& error) {
+    std::cerr << error.what() << "\n";
+    return 1;
+  }
+  std::cout << input_file << ": OK\n";
+  return 0;
+}
+
+/// main() of a tube solver executable: --help prints `usage`, --check checks the input file
+/// (check_input_file), else serve the coupler with the model `make` builds from the input file
+/// (argv[1] or `default_input`).
+template <class Model, class Side, class Parameters, class Make>
 int run_tube_solver(int argc, char** argv, const std::string& name, const char* usage,
                     const std::string& default_input, Make make) {
   if (sdk::wants_help(argc, argv)) {
     std::cout << usage;
     return 0;
   }
+  if (argc > 1 && std::string(argv[1]) == "--check")
+    return check_input_file<Parameters>(argc > 2 ? argv[2] : default_input);
   const std::string input_file = input_file_argument(argc, argv, default_input);
   TubeSolver<Model, Side> solver(
       name, [input_file, make](const sdk::RunInfo& run) { return make(input_file, run); });

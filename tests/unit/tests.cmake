@@ -51,6 +51,7 @@ target_compile_definitions(${COCOPP_LAST_TEST} PRIVATE
 cocopp_unit_test(solver_wrappers/tube SUFFIX executables SOURCES test_tube_executables.cpp
   DEPENDS cocopp-tube-flow cocopp-tube-structure cocopp-tube-ringmodel)
 target_compile_definitions(${COCOPP_LAST_TEST} PRIVATE
+  COCOPP_TUBE_EXAMPLES_DIR="${PROJECT_SOURCE_DIR}/examples/tube"
   COCOPP_TUBE_FLOW_EXECUTABLE="$<TARGET_FILE:cocopp-tube-flow>"
   COCOPP_TUBE_STRUCTURE_EXECUTABLE="$<TARGET_FILE:cocopp-tube-structure>"
   COCOPP_TUBE_RINGMODEL_EXECUTABLE="$<TARGET_FILE:cocopp-tube-ringmodel>")

@@ -413,9 +413,12 @@ TEST_F(ProcessSolverWrapperSetupTest, SettingsAreValidatedWhenBuilt) {
 
 TEST_F(ProcessSolverWrapperSetupTest, BuiltinTubeSolversDefaultToTheBinDirectory) {
   // Point COCOPP_BIN_DIR at a fake bin directory, so that this test does not depend on the
-  // tube executables.
+  // tube executables; its cocopp-tube-flow checks its input as the real one's --check does
+  // (tested in test_tube_executables): an empty file is refused.
   TemporaryDirectory bin;
-  write_text(bin / "cocopp-tube-flow", "#!/bin/sh\n");
+  write_text(bin / "cocopp-tube-flow",
+             "#!/bin/sh\n[ \"$1\" = --check ] || exit 3\n[ -s \"$2\" ] && exit 0\n"
+             "echo \"$2: the file must hold a mapping of keys\" >&2\nexit 1\n");
   std::filesystem::permissions(bin / "cocopp-tube-flow", std::filesystem::perms::owner_all);
   const char* saved = std::getenv("COCOPP_BIN_DIR");
   const std::string saved_value = saved != nullptr ? saved : "";
@@ -445,9 +448,10 @@ TEST_F(ProcessSolverWrapperSetupTest, BuiltinTubeSolversDefaultToTheBinDirectory
       "input file " + (directory_ / "flow/tube_flow.yaml").string() + " does not exist");
   write_text(directory_ / "flow/tube_flow.yaml", "");
   EXPECT_NO_THROW(flow->check());
-  // check_solver_input() reads the input file as cocopp-tube-flow will.
-  EXPECT_CONTAINS(error_message<CaseError>([&] { flow->check_solver_input(); }),
-                  "tube_flow.yaml: the file must hold a mapping of keys");
+  // check_solver_input() has cocopp-tube-flow read its input file, in its working directory.
+  const std::string refused = error_message<CaseError>([&] { flow->check_solver_input(); });
+  EXPECT_CONTAINS(refused, "solver 'tube_flow' refuses its input file");
+  EXPECT_CONTAINS(refused, "tube_flow.yaml: the file must hold a mapping of keys");
   const std::string input = read_text(std::filesystem::path(COCOPP_TEST_SOURCE_DIR) /
                                       "examples/tube/flow_structure/flow/tube_flow.yaml");
   write_text(directory_ / "flow/tube_flow.yaml", input);
