@@ -18,7 +18,7 @@
 
 #include "core/protocol/messages.hpp"
 #include "core/protocol/transport.hpp"
-#include "solver_wrappers/sdk/solver_sdk.hpp"
+#include "solvers/sdk/solver_sdk.hpp"
 
 namespace {
 

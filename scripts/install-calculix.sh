@@ -38,7 +38,7 @@ fi
 
 binary_version=$(dpkg-query -W -f='${Version}' calculix-ccx)
 source_version=${binary_version%+b*}  # a binary-only rebuild comes from the same source
-hooks=solver_wrappers/calculix/coupled_ccx/cocopp_ccx_hooks.h
+hooks=solvers/calculix/cocopp_ccx_hooks.h
 wanted="$source_version $(cat "${patches[@]}" "$hooks" | sha256sum | cut -c1-16) ${COCOPP_CCX_OPTIMIZATION:--O3}"
 if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$wanted" ] && [ -x "$prefix/bin/ccx" ] &&
   [ -f "$prefix/lib/libccx_cocopp.a" ]; then
@@ -68,8 +68,8 @@ version=$(basename "$(dirname "$src")")  # ccx_2.20
 # an install takes along, to this processor: COCOPP_CCX_OPTIMIZATION="-O3 -march=native".
 optimization=${COCOPP_CCX_OPTIMIZATION:--O3}
 echo "install-calculix: building $version with cocopp's patches, $optimization (log: $deps_dir/calculix-build.log)"
-# The hooks header of patch 05 is cocopp's (solver_wrappers/calculix/coupled_ccx).
-cflags="$optimization -w -I/usr/include/spooles -I$PWD/solver_wrappers/calculix/coupled_ccx -DARCH=\"Linux\" -DSPOOLES -DARPACK -DMATRIXSTORAGE -DUSE_MT=1"
+# The hooks header of patch 05 is cocopp's (solvers/calculix).
+cflags="$optimization -w -I/usr/include/spooles -I$PWD/solvers/calculix -DARCH=\"Linux\" -DSPOOLES -DARPACK -DMATRIXSTORAGE -DUSE_MT=1"
 make -C "$src" -j "$(nproc)" \
   CFLAGS="$cflags" \
   FFLAGS="$optimization -w -fallow-argument-mismatch" >"$deps_dir/calculix-build.log" 2>&1 || {

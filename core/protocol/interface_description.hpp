@@ -2,7 +2,7 @@
 // The plain data a solver and the coupler exchange at initialization: the model parts of the
 // interface and the run information. They belong to the protocol (standard library only) and
 // keep the namespace cocopp::sdk because they are the SDK's public types: a solver fills them
-// (solver_wrappers/sdk/solver_sdk.hpp), the protocol encodes them (messages.hpp).
+// (solvers/sdk/solver_sdk.hpp), the protocol encodes them (messages.hpp).
 #include <cstdint>
 #include <string>
 #include <vector>

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "solver_wrappers/sdk/solver_sdk.hpp"
+#include "solvers/sdk/solver_sdk.hpp"
 
 namespace {
 

@@ -1,6 +1,6 @@
 #pragma once
 // PersistentCcx: the calculix wrapper's `mode: persistent`. One cocopp-ccx process
-// (coupled_ccx/coupled_ccx.cpp, ccx with patch 05) runs for the whole simulation: the deck's
+// (solvers/calculix/coupled_ccx.cpp, ccx with patch 05) runs for the whole simulation: the deck's
 // step becomes one ccx step as long as the run, which the coupler's time steps advance
 // increment by increment, and every coupling iteration is solved from an in-memory checkpoint
 // of the step's start. So ccx's dynamic integrator carries its state from step to step (no

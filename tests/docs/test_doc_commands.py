@@ -180,7 +180,7 @@ def main():
     outputs = {}
     with tempfile.TemporaryDirectory(prefix="cocopp-doc-commands-") as checkout:
         for path in tracked_files(source, ("README.md", "bench", "docs", "examples", "scripts",
-                                           "solver_wrappers/sdk")):  # the Python SDK
+                                           "solvers/sdk")):  # the Python SDK
             os.makedirs(os.path.join(checkout, os.path.dirname(path)), exist_ok=True)
             shutil.copy2(os.path.join(source, path), os.path.join(checkout, path))
         os.symlink(os.path.dirname(bin_dir), os.path.join(checkout, "build"))

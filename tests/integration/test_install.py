@@ -82,7 +82,7 @@ def main():
                      "share/cocopp/plot_results.py", "lib/libcocopp_sdk.a",
                      "lib/cmake/cocopp/cocoppConfig.cmake", "lib/pkgconfig/cocopp-sdk.pc",
                      "lib/python3/dist-packages/cocopp_sdk.py",
-                     "include/cocopp/solver_wrappers/sdk/solver_sdk.hpp"]:
+                     "include/cocopp/solvers/sdk/solver_sdk.hpp"]:
             check(os.path.isfile(os.path.join(prefix, part)), f"installed {part}")
         check("cocopp" in run([cocopp, "--help"], env=env), "the moved cocopp runs")
         if args.patched_ccx:

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The Python solver SDK (solver_wrappers/sdk/cocopp_sdk.py) against the coupler, ctest
+"""The Python solver SDK (solvers/sdk/cocopp_sdk.py) against the coupler, ctest
 `python_sdk`: examples/external_solver/ring_wall.py coupled to the built-in tube flow over both
 transports (the built-in ring model's results to the bit), solver-coupling convergence reported
 by the solver (and refused by one that cannot), and what goes wrong on the solver's side
@@ -84,7 +84,7 @@ def write_case(directory, name, command, transport="pipe", steps=100, solver_con
 def main():
     bin_dir, source = sys.argv[1], sys.argv[2]
     env = dict(os.environ, COCOPP_BIN_DIR=bin_dir,
-               PYTHONPATH=os.path.join(source, "solver_wrappers", "sdk"),
+               PYTHONPATH=os.path.join(source, "solvers", "sdk"),
                PATH=f"/usr/bin:{os.environ.get('PATH', '')}")
     with tempfile.TemporaryDirectory(prefix="cocopp-python-sdk-") as scratch:
         reference = os.path.join(scratch, "flow_ringmodel")

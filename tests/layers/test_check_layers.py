@@ -10,7 +10,7 @@ import tempfile
 
 ROOT = pathlib.Path(sys.argv[1]).resolve()
 CHECKER = ROOT / "scripts" / "check_layers.py"
-FOLDERS = ["core", "mappers", "solver_wrappers", "coupler", "tests", "bench"]
+FOLDERS = ["core", "mappers", "solvers", "solver_wrappers", "coupler", "tests", "bench"]
 
 
 def run(tree):
@@ -52,21 +52,41 @@ with tempfile.TemporaryDirectory() as base:
 
     cases = [
         ("core/data/interface.cpp", '#include "coupler/app/run.hpp"', "layer app"),
-        ("core/protocol/messages.hpp", '#include "solver_wrappers/sdk/solver_sdk.hpp"',
-         "layer sdk"),
-        ("solver_wrappers/sdk/solver_sdk.cpp", '#include "core/case/settings.hpp"', "layer core"),
+        ("core/protocol/messages.hpp", '#include "solvers/sdk/solver_sdk.hpp"', "layer sdk"),
+        ("solvers/sdk/solver_sdk.cpp", '#include "core/case/settings.hpp"', "layer core"),
         ("mappers/mapper.cpp", '#include "solver_wrappers/solver_wrapper.hpp"',
          "layer solver_wrappers"),
         ("bench/calculix_bench.hpp",
          '#include "tests/unit/solver_wrappers/calculix/calculix_test_helpers.hpp"',
          "layer tests"),
+        # The process boundary, both ways: solver-side code never includes the coupler's ...
+        ("solvers/tube/tube_flow.cpp", '#include "solver_wrappers/solver_wrapper.hpp"',
+         "layer solver_wrappers"),
+        ("solvers/calculix/coupled_ccx.cpp", '#include "mappers/mapper.hpp"', "layer mappers"),
+        # ... nor another solver's ...
+        ("solvers/tube/tube_flow.cpp", '#include "solvers/openfoam/patch_numbering.hpp"',
+         "layer solver openfoam"),
+        # ... and the coupler side never includes solver-side code, the SDK included.
+        ("solver_wrappers/tube/tube.cpp", '#include "solvers/tube/tube_input.hpp"',
+         "layer solver tube"),
+        ("coupler/coupled_solvers/coupled_solver.cpp", '#include "solvers/sdk/solver_sdk.hpp"',
+         "layer sdk"),
+        # Written relative to the including file, as the compiler resolves it.
+        ("core/data/interface.cpp", '#include "../../coupler/app/run.hpp"', "layer app"),
     ]
     for relative, include, layer in cases:
         tree = fresh_copy(base)
         line = plant(tree, relative, include)
         code, output = run(tree)
         expect(code == 1 and f"{relative}:{line}: includes" in output and layer in output,
-               f"an upward include in {relative} is reported at line {line} ({layer})")
+               f"a forbidden include in {relative} is reported at line {line} ({layer})")
+
+    tree = fresh_copy(base)
+    line = plant(tree, "solvers/tube/tube_flow.cpp", '#include "tube_input.hpp"')
+    code, output = run(tree)
+    expect(code == 1 and f"solvers/tube/tube_flow.cpp:{line}: includes \"tube_input.hpp\" "
+           "relative to itself" in output and '"solvers/tube/tube_input.hpp"' in output,
+           "an include of a project header relative to the including file is reported")
 
     tree = fresh_copy(base)
     (tree / "coupler/predictors/linear.cpp").rename(tree / "coupler/predictors/extrapolate.cpp")

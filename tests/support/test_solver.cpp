@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-#include "solver_wrappers/sdk/solver_sdk.hpp"
+#include "solvers/sdk/solver_sdk.hpp"
 
 // In sanitizer builds, let a requested crash be a real SIGSEGV (as users see it) instead of
 // AddressSanitizer's report and exit code 1. Unused without a sanitizer.

@@ -5,6 +5,7 @@ cocopp_unit_test(core/protocol SOURCES test_frame.cpp test_messages.cpp test_tra
                  LIBS cocopp_protocol)
 cocopp_unit_test(core/case SOURCES test_settings.cpp test_registry.cpp test_path_problem.cpp
                  LIBS cocopp_core)
+cocopp_unit_test(core/data SOURCES test_restart_file.cpp LIBS cocopp_core)
 
 # mappers
 cocopp_unit_test(mappers/interpolators
@@ -12,8 +13,25 @@ cocopp_unit_test(mappers/interpolators
                  LIBS cocopp_mappers)
 cocopp_unit_test(mappers/transformers SOURCES test_transformers.cpp LIBS cocopp_mappers)
 
-# solver wrappers
-cocopp_unit_test(solver_wrappers/sdk SOURCES test_solver_sdk.cpp LIBS cocopp_sdk)
+# solvers (the solver side: what runs in a solver process)
+cocopp_unit_test(solvers/sdk SOURCES test_solver_sdk.cpp LIBS cocopp_sdk)
+cocopp_unit_test(solvers/tube
+  SOURCES test_banded_solver.cpp test_tube_input.cpp test_tube_flow.cpp test_tube_structure.cpp
+          test_tube_ringmodel.cpp test_tube_wave_speed.cpp test_tube_restart.cpp
+  LIBS cocopp_tube_models)
+# The example input files are read from the source tree (also without ctest's environment).
+target_compile_definitions(${COCOPP_LAST_TEST} PRIVATE
+  COCOPP_TUBE_EXAMPLES_DIR="${PROJECT_SOURCE_DIR}/examples/tube")
+# Runs the executables, so building it builds them.
+cocopp_unit_test(solvers/tube SUFFIX executables SOURCES test_tube_executables.cpp
+  DEPENDS cocopp-tube-flow cocopp-tube-structure cocopp-tube-ringmodel)
+target_compile_definitions(${COCOPP_LAST_TEST} PRIVATE
+  COCOPP_TUBE_EXAMPLES_DIR="${PROJECT_SOURCE_DIR}/examples/tube"
+  COCOPP_TUBE_FLOW_EXECUTABLE="$<TARGET_FILE:cocopp-tube-flow>"
+  COCOPP_TUBE_STRUCTURE_EXECUTABLE="$<TARGET_FILE:cocopp-tube-structure>"
+  COCOPP_TUBE_RINGMODEL_EXECUTABLE="$<TARGET_FILE:cocopp-tube-ringmodel>")
+
+# solver wrappers (the coupler side)
 cocopp_unit_test(solver_wrappers/process
                  SOURCES test_child_process.cpp test_process_solver_wrapper.cpp
                  LIBS cocopp_solver_wrappers DEPENDS cocopp-test-solver)
@@ -23,7 +41,7 @@ cocopp_unit_test(solver_wrappers/mapped SOURCES test_mapped_solver_wrapper.cpp t
 cocopp_unit_test(solver_wrappers/openfoam SOURCES test_openfoam_case.cpp
                  LIBS cocopp_solver_wrappers)
 # The CalculiX wrapper: deck reading and loads without ccx; the ccx runs where ccx is
-# (COCOPP_HAVE_CALCULIX, found once in solver_wrappers/calculix).
+# (COCOPP_HAVE_CALCULIX, found once in solvers/calculix).
 cocopp_unit_test(solver_wrappers/calculix SOURCES test_calculix_deck.cpp
                  LIBS cocopp_solver_wrappers)
 if(COCOPP_HAVE_CALCULIX)
@@ -40,25 +58,11 @@ if(COCOPP_HAVE_CALCULIX)
     add_dependencies(${COCOPP_LAST_TEST} cocopp-ccx)
   endif()
 endif()
-cocopp_unit_test(solver_wrappers/tube
-  SOURCES test_banded_solver.cpp test_tube_input.cpp test_tube_flow.cpp test_tube_structure.cpp
-          test_tube_ringmodel.cpp test_tube_wave_speed.cpp test_restart_file.cpp
-  LIBS cocopp_tube_models)
-# The example input files are read from the source tree (also without ctest's environment).
-target_compile_definitions(${COCOPP_LAST_TEST} PRIVATE
-  COCOPP_TUBE_EXAMPLES_DIR="${PROJECT_SOURCE_DIR}/examples/tube")
-# Runs the executables, so building it builds them.
-cocopp_unit_test(solver_wrappers/tube SUFFIX executables SOURCES test_tube_executables.cpp
-  DEPENDS cocopp-tube-flow cocopp-tube-structure cocopp-tube-ringmodel)
-target_compile_definitions(${COCOPP_LAST_TEST} PRIVATE
-  COCOPP_TUBE_EXAMPLES_DIR="${PROJECT_SOURCE_DIR}/examples/tube"
-  COCOPP_TUBE_FLOW_EXECUTABLE="$<TARGET_FILE:cocopp-tube-flow>"
-  COCOPP_TUBE_STRUCTURE_EXECUTABLE="$<TARGET_FILE:cocopp-tube-structure>"
-  COCOPP_TUBE_RINGMODEL_EXECUTABLE="$<TARGET_FILE:cocopp-tube-ringmodel>")
 
 # coupler
 cocopp_unit_test(coupler/coupled_solvers
-  SOURCES test_coupled_solvers.cpp test_ibqn.cpp test_iqnism.cpp test_scaling.cpp test_state.cpp
+  SOURCES test_coupled_solvers.cpp test_ibqn.cpp test_iqnism.cpp test_scaling.cpp
+          test_coupled_solver_state.cpp
   LIBS cocopp_coupling)
 cocopp_unit_test(coupler/coupled_solvers/models
   SOURCES test_cross_projection.cpp test_ls.cpp test_multi_vector.cpp test_qr_factorization.cpp
@@ -69,6 +73,6 @@ cocopp_unit_test(coupler/predictors SOURCES test_predictors.cpp LIBS cocopp_coup
 # watchpoints.
 cocopp_unit_test(coupler/results
   SOURCES test_results_writer.cpp test_results_reader.cpp test_run_summary.cpp
-          test_results_python.cpp test_watchpoints.cpp
+          test_results_python.cpp test_watchpoints.cpp test_state_file.cpp
   LIBS cocopp_coupling)
 cocopp_unit_test(coupler/app SOURCES test_components.cpp LIBS cocopp_app)

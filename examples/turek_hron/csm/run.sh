@@ -21,6 +21,6 @@ mkdir -p "$run/flag"
 /usr/bin/python3 "$here/make_flag.py" "$test" --dt "$dt" --output "$run/flag/flag.inp" "$@"
 cp "$here/case_$kind.yaml" "$run/case.yaml"
 # The partner runs on the Python SDK: the checkout's, unless one is installed.
-export PYTHONPATH="$root/solver_wrappers/sdk${PYTHONPATH:+:$PYTHONPATH}"
+export PYTHONPATH="$root/solvers/sdk${PYTHONPATH:+:$PYTHONPATH}"
 "$cocopp" run "$run/case.yaml"
 /usr/bin/python3 "$here/tip.py" "$test" "$run/results/case.h5"

@@ -7,9 +7,9 @@
 
 #include "coupler/results/watchpoint_csv.hpp"
 #include "coupler/results/watchpoints.hpp"
-#include "results_fixture.hpp"
 #include "tests/support/error_message.hpp"
 #include "tests/support/temporary_directory.hpp"
+#include "tests/unit/coupler/results/results_fixture.hpp"
 
 namespace cocopp {
 namespace {

@@ -1,0 +1,245 @@
+#include "solvers/sdk/solver_sdk.hpp"
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <iostream>
+#include <memory>
+#include <set>
+#include <stdexcept>
+
+#include "core/protocol/messages.hpp"
+#include "core/protocol/transport.hpp"
+#include "core/protocol/variable_components.hpp"
+
+namespace cocopp::sdk {
+
+namespace {
+
+namespace protocol = cocopp::protocol;
+using protocol::Frame;
+using protocol::MessageType;
+
+/// How long a solver waits for the coupler to open its end of the channel.
+constexpr double kConnectTimeoutSeconds = 60.0;
+
+void print_help(const std::string& program) {
+  std::cout << program
+            << " is a cocopp solver: the cocopp coupler starts it and drives it time step by\n"
+               "time step. Run it through `cocopp run case.yaml`, with a solver of this type in\n"
+               "the case file. The coupler passes the channel to talk through in the environment\n"
+               "variables COCOPP_TRANSPORT and COCOPP_CHANNEL (see docs/protocol.md).\n";
+}
+
+/// Number of values `variables` take on `part` (points x components, summed).
+std::size_t data_size(const ModelPart& part, const std::vector<std::string>& variables) {
+  std::size_t size = 0;
+  for (const auto& variable : variables) {
+    const int components = protocol::variable_components(variable);
+    if (components == 0)
+      throw std::runtime_error("model part '" + part.name + "': unknown interface variable '" +
+                               variable + "'");
+    size += part.ids.size() * static_cast<std::size_t>(components);
+  }
+  return size;
+}
+
+/// Answers the coupler's requests with the Solver's methods.
+class Server {
+ public:
+  Server(Solver& solver, protocol::Transport& channel, pid_t coupler_pid)
+      : solver_(solver), channel_(channel), coupler_pid_(coupler_pid) {}
+
+  int run() {
+    try {
+      channel_.send(protocol::encode_hello({protocol::kProtocolVersion, ::getpid()}));
+      while (handle(channel_.receive(protocol::kWaitForever, [this] { check_coupler(); }))) {
+      }
+      return 0;
+    } catch (const protocol::TransportError& e) {
+      // The channel is gone: nobody to report to but the log.
+      std::cerr << "cocopp solver: lost the connection to the coupler: " << e.what() << "\n";
+      return 1;
+    } catch (const std::exception& e) {
+      return report_error(e.what());
+    } catch (...) {
+      return report_error("unknown exception");
+    }
+  }
+
+ private:
+  int report_error(const std::string& message) {
+    std::cerr << "cocopp solver: error: " << message << "\n";
+    try {
+      channel_.send(protocol::encode_error(message));
+    } catch (const std::exception& e) {
+      std::cerr << "cocopp solver: could not send the error to the coupler: " << e.what() << "\n";
+    }
+    return 1;
+  }
+
+  // With the file transport there is no end-of-file to notice; a new parent means the
+  // coupler has gone.
+  void check_coupler() const {
+    if (::getppid() != coupler_pid_) throw protocol::PeerClosed("the coupler has exited");
+  }
+
+  /// Handle one request; false after STOP.
+  bool handle(const Frame& request) {
+    const MessageType type = protocol::message_type(request);
+    if (type == MessageType::kStop && !initialized_) {
+      reply_ok();  // stopped before it started: nothing to finalize
+      return false;
+    }
+    if (type != MessageType::kInitialize && !initialized_)
+      throw protocol::ProtocolError(protocol::message_name(type) + " before INITIALIZE");
+    switch (type) {
+      case MessageType::kInitialize:
+        on_initialize(protocol::decode_initialize(request));
+        return true;
+      case MessageType::kInitializeStep: {
+        const auto step = protocol::decode_initialize_step(request);
+        solver_.initialize_step(step.step, step.time);
+        return reply_ok();
+      }
+      case MessageType::kSolve:
+        on_solve(protocol::decode_solve(request));
+        return true;
+      case MessageType::kFinalizeStep:
+        protocol::decode_empty(request, type);
+        solver_.finalize_step();
+        return reply_ok();
+      case MessageType::kOutputStep:
+        protocol::decode_empty(request, type);
+        solver_.output_step();
+        return reply_ok();
+      case MessageType::kSaveRestart: {
+        const std::int32_t step = protocol::decode_save_restart(request);
+        if (solver_.can_restart()) solver_.save_restart(step);
+        return reply_ok();
+      }
+      case MessageType::kReportConvergence:
+        protocol::decode_empty(request, type);
+        solver_.start_reporting_convergence();
+        reporting_convergence_ = true;
+        return reply_ok();
+      case MessageType::kStop:
+        protocol::decode_empty(request, type);
+        solver_.finalize();
+        reply_ok();
+        return false;
+      default:
+        throw protocol::ProtocolError("unexpected request " + protocol::message_name(type));
+    }
+  }
+
+  bool reply_ok() {
+    channel_.send(protocol::encode_empty(MessageType::kOk));
+    return true;
+  }
+
+  void on_initialize(const RunInfo& run) {
+    if (initialized_) throw protocol::ProtocolError("INITIALIZE received twice");
+    if (run.timestep_start > 0 && !solver_.can_restart())
+      throw std::runtime_error(
+          "the coupler restarts the run after time step " + std::to_string(run.timestep_start) +
+          ", but this solver cannot restart (it saves no restart data): run the case from the "
+          "start");
+    InterfaceDescription description = solver_.initialize(run);
+    validate(description);
+    initialized_ = true;
+    channel_.send(protocol::encode_interface(description));
+  }
+
+  void on_solve(const std::vector<double>& input) {
+    if (input.size() != input_size_)
+      throw protocol::ProtocolError("SOLVE carried " + std::to_string(input.size()) +
+                                    " values; the interface takes " + std::to_string(input_size_));
+    std::vector<double> output;
+    try {
+      output = solver_.solve(input);
+    } catch (const InputRejected& e) {
+      std::cerr << "cocopp solver: input rejected: " << e.what() << "\n";
+      channel_.send(protocol::encode_rejected(e.what()));
+      return;
+    }
+    if (output.size() != output_size_)
+      throw std::runtime_error("solve() returned " + std::to_string(output.size()) +
+                               " values; the interface description implies " +
+                               std::to_string(output_size_));
+    channel_.send(reporting_convergence_ ? protocol::encode_data_converged(
+                                               output, solver_.converged_at_first_iteration())
+                                         : protocol::encode_data(output));
+  }
+
+  // Errors in the description are the solver's: report them here, where they are made.
+  void validate(const InterfaceDescription& description) {
+    std::set<std::string> names;
+    input_size_ = output_size_ = 0;
+    for (const auto& part : description.model_parts) {
+      if (part.name.empty()) throw std::runtime_error("a model part has no name");
+      if (!names.insert(part.name).second)
+        throw std::runtime_error("model part '" + part.name + "' is described twice");
+      if (part.coordinates.size() != 3 * part.ids.size())
+        throw std::runtime_error(
+            "model part '" + part.name + "' has " + std::to_string(part.ids.size()) + " ids but " +
+            std::to_string(part.coordinates.size()) + " coordinates (3 per point expected)");
+      input_size_ += data_size(part, part.input_variables);
+      output_size_ += data_size(part, part.output_variables);
+    }
+    if (!description.initial_output.empty() && description.initial_output.size() != output_size_)
+      throw std::runtime_error("initial_output has " +
+                               std::to_string(description.initial_output.size()) +
+                               " values; the output interface has " + std::to_string(output_size_) +
+                               " (or leave it empty for zeros)");
+  }
+
+  Solver& solver_;
+  protocol::Transport& channel_;
+  pid_t coupler_pid_;
+  bool initialized_ = false;
+  bool reporting_convergence_ = false;
+  std::size_t input_size_ = 0;
+  std::size_t output_size_ = 0;
+};
+
+}  // namespace
+
+bool wants_help(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) return true;
+  return false;
+}
+
+int serve(Solver& solver, int argc, char** argv) {
+  const std::string program = argc > 0 ? argv[0] : "this solver";
+  if (wants_help(argc, argv)) {
+    print_help(program);
+    return 0;
+  }
+  const char* transport = std::getenv(protocol::kTransportVariable);
+  const char* channel = std::getenv(protocol::kChannelVariable);
+  if (transport == nullptr || channel == nullptr) {
+    std::cerr << program
+              << ": this program is a cocopp solver; run it through `cocopp run case.yaml` "
+                 "(COCOPP_TRANSPORT and COCOPP_CHANNEL are not set)\n";
+    return 2;
+  }
+  const pid_t coupler_pid = ::getppid();
+  std::unique_ptr<protocol::Transport> link;
+  try {
+    link = protocol::open_solver_channel(
+        protocol::parse_transport_kind(transport), channel, kConnectTimeoutSeconds,
+        [coupler_pid] {
+          if (::getppid() != coupler_pid) throw protocol::PeerClosed("the coupler has exited");
+        },
+        protocol::busy_wait_from_environment());
+  } catch (const std::exception& e) {
+    std::cerr << program << ": cannot connect to the cocopp coupler: " << e.what() << "\n";
+    return 1;
+  }
+  return Server(solver, *link, coupler_pid).run();
+}
+
+}  // namespace cocopp::sdk
