@@ -1,5 +1,7 @@
-"""The cocopp executable a script runs, found in the order scripts/lib/cocopp-bin.sh finds it
-for the shell scripts (tests/python compares the two):
+"""The executables a script runs: cocopp, and the ccx that scripts/install-calculix.sh built.
+
+cocopp is found in the order scripts/lib/cocopp-bin.sh finds it for the shell scripts
+(tests/python compares the two):
 
 1. $COCOPP_BIN_DIR/cocopp, if the variable is set (the tests set it);
 2. the checkout's build, build/bin/cocopp, when this package is a checkout's python/cocopp;
@@ -35,3 +37,11 @@ def find_cocopp(checkout=None):
     if on_path:
         return pathlib.Path(on_path)
     raise SystemExit("no cocopp: build it (scripts/setup.sh) or put an installed one on PATH")
+
+
+def patched_ccx():
+    """Where scripts/install-calculix.sh puts the ccx it builds with cocopp's patches (restarts
+    need them): $COCOPP_DEPS_DIR/calculix/bin/ccx, else the checkout's build-deps/. The path,
+    whether or not ccx was built there."""
+    deps = os.environ.get("COCOPP_DEPS_DIR") or PACKAGE_CHECKOUT / "build-deps"
+    return pathlib.Path(deps) / "calculix" / "bin" / "ccx"

@@ -30,6 +30,8 @@ def results_path(case_file):
     import yaml  # only here: the other readers need no yaml
 
     case_file = pathlib.Path(case_file)
+    if not case_file.is_file():
+        raise SystemExit(f"no case file {case_file}")
     case = yaml.safe_load(case_file.read_text()) or {}
     settings = case.get("settings") or {}
     directory = case_file.parent / settings.get("results_directory", "results")
@@ -52,6 +54,12 @@ def read_summary(results_file, missing_ok=False):
     return json.loads(path.read_text())
 
 
+def bench_run_directory(output_directory, run):
+    """Where `cocopp bench` ran one of its runs (an entry of bench.json's "runs"):
+    <output_directory>/[<case>/]<name>, holding its case.yaml and results/."""
+    return pathlib.Path(output_directory) / run.get("case", "") / run["name"]
+
+
 def read_bench(path):
     """The result of `cocopp bench` (docs/bench.md): its bench.json, or the output directory
     holding it."""
@@ -59,6 +67,10 @@ def read_bench(path):
     if path.is_dir():
         path = path / "bench.json"
     return json.loads(path.read_text())
+
+
+class ResultsFileError(SystemExit):
+    """A results file that cannot be opened: ends a script with its message, unless caught."""
 
 
 class ResultsFile:
@@ -73,7 +85,7 @@ class ResultsFile:
             self.file = h5py.File(path, "r", locking=False) if live else h5py.File(path, "r")
         except (OSError, FileNotFoundError) as error:
             hint = " (a running cocopp holds it: try --live)" if "lock" in str(error) else ""
-            raise SystemExit(f"cannot open {path}: {error}{hint}")
+            raise ResultsFileError(f"cannot open {path}: {error}{hint}")
         self.steps = self.file["steps/step"][:]
         self.times = self.file["steps/time"][:]
 
