@@ -15,7 +15,8 @@ import pathlib
 
 import numpy as np
 
-ENTRIES_PER_LINE = 16  # ccx reads at most 16 entries a data line; an element continues after a comma
+# ccx reads at most 16 entries a data line; an element goes on after a comma, on the next line.
+ENTRIES_PER_LINE = 16
 
 
 def number(value):

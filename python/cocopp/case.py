@@ -12,8 +12,8 @@ say why a value is what it is, and read back.
 A dict is written one key a line, a list of dicts one item after the other (`- key: ...`), a
 list of plain values and a dict wrapped in `flow` on one line (`[flag]`, `{type: linear}`);
 `commented(value, text)` puts `# text` after the value's line, and a text of several lines goes
-on in comment lines below it; an item of a list with a comment puts the list one item a line. Values are written by yaml, and dump checks that its text loads
-back as the same dict.
+on in comment lines below it; an item of a list with a comment puts the list one item a line.
+Values are written by yaml, and dump checks that its text loads back as the same dict.
 """
 import pathlib
 

@@ -39,7 +39,7 @@ def results_path(case_file):
 
 
 def summary_path(results_file):
-    """The run summary written beside a results file: results/case.h5 -> results/case.summary.json."""
+    """The run summary beside a results file: results/case.h5 -> results/case.summary.json."""
     return pathlib.Path(results_file).with_suffix(".summary.json")
 
 

@@ -5,8 +5,6 @@ CSM1, CSM2: u(A) after the step; CSM3: mean, amplitude and frequency of u_y(A) o
 periods (from its maxima; u_x's mean and amplitude between the same times)."""
 import sys
 
-import numpy as np
-
 from cocopp.results import ResultsFile
 
 REFERENCE = {"csm1": {"ux": -7.187e-3, "uy": -66.10e-3},

@@ -245,7 +245,8 @@ def case_file(test, level, dt, steps, q, tolerance, depth, command, cores=1):
     settings = {"delta_t": dt, "number_of_timesteps": steps,
                 "state_interval": case.commented(max(1, round(0.5 / dt)),
                                                  "a state to restart from (cocopp run --restart)")}
-    header = (f"Turek-Hron {test.upper()} (docs/validation-turek-hron.md), written by make_case.py:\n"
+    header = (f"Turek-Hron {test.upper()} (docs/validation-turek-hron.md), written by "
+              "make_case.py:\n"
               f"  {command}\n"
               f"fluid/: the channel in OpenFOAM (level {level}, {make_mesh.cell_count(level)} "
               "cells); flag/: the flag in CalculiX.")
