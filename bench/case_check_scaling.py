@@ -5,6 +5,8 @@ bench/results/case_check_scaling/ and prints the time of `cocopp check` for each
 ratio to the previous n (2 for linear time, 4 for quadratic).
 
   /usr/bin/python3 bench/case_check_scaling.py [--cocopp build/bin/cocopp]
+
+--cocopp defaults to the one the package cocopp finds (cocopp.executable).
 """
 import argparse
 import pathlib
@@ -12,28 +14,34 @@ import shutil
 import subprocess
 import time
 
+from cocopp import case as case_files
+from cocopp.executable import find_cocopp
+
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--cocopp", default=str(ROOT / "build" / "bin" / "cocopp"))
+    parser.add_argument("--cocopp", help="the cocopp to time (default: cocopp.executable's)")
     parser.add_argument("--sizes", type=int, nargs="+", default=[10000, 20000, 40000, 80000])
     args = parser.parse_args()
+    cocopp = args.cocopp or find_cocopp()
     out = ROOT / "bench" / "results" / "case_check_scaling"
     shutil.rmtree(out, ignore_errors=True)
     shutil.copytree(ROOT / "examples" / "tube" / "flow_structure", out,
                     ignore=shutil.ignore_patterns("results"))
-    original = (out / "case.yaml").read_text()
+    original = case_files.read(out / "case.yaml")
+    criteria = original["coupled_solver"]["convergence_criterion"]["criteria"]
     previous = None
     print(f"{'entries':>8} {'check time':>11} {'ratio':>6}")
     for n in args.sizes:
-        criteria = "".join(f"      - {{type: iteration_limit, maximum: {i + 20}}}\n"
-                           for i in range(n))
+        limits = [case_files.flow({"type": "iteration_limit", "maximum": i + 20})
+                  for i in range(n)]
+        original["coupled_solver"]["convergence_criterion"]["criteria"] = limits + criteria
         case = out / f"case_{n}.yaml"
-        case.write_text(original.replace("    criteria:\n", "    criteria:\n" + criteria, 1))
+        case_files.write(case, original)
         start = time.perf_counter()
-        subprocess.run([args.cocopp, "check", str(case)], check=True, stdout=subprocess.DEVNULL)
+        subprocess.run([cocopp, "check", str(case)], check=True, stdout=subprocess.DEVNULL)
         elapsed = time.perf_counter() - start
         ratio = f"{elapsed / previous:6.2f}" if previous else ""
         print(f"{n:>8} {elapsed:>9.2f} s {ratio:>6}")

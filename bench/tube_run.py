@@ -10,6 +10,9 @@ copies; results I/O and start-up excluded) next to the total coupler time per it
     /usr/bin/python3 bench/tube_run.py [--build build] [--repeat 10] [--case case.yaml]
         [--example examples/tube/flow_ringmodel] [--coupled-solver "{type: ibqn, ...}"]
 
+Runs the cocopp of --build's bin/, by default the one the package cocopp finds
+(cocopp.executable: $COCOPP_BIN_DIR, the checkout's build, or PATH).
+
 --coupled-solver replaces the case's coupled solver (YAML, its predictor and convergence
 criterion kept unless given), so that every coupled solver is timed on the same case.
 
@@ -20,7 +23,6 @@ the noise of a shared machine, so that two builds compare on one run each.
 """
 import argparse
 import contextlib
-import json
 import re
 import shutil
 import statistics
@@ -31,17 +33,21 @@ from pathlib import Path
 
 import yaml
 
+from cocopp.case import read as read_case, write as write_case
+from cocopp.executable import find_cocopp
+from cocopp.results import read_summary, results_path
+
 ROOT = Path(__file__).resolve().parent.parent
 
 
 def replace_coupled_solver(case_file, coupled_solver):
     """The case with its coupled solver replaced, keeping predictor and criterion if not given."""
-    case = yaml.safe_load(case_file.read_text())
+    case = read_case(case_file)
     replacement = yaml.safe_load(coupled_solver)
     for kept in ("predictor", "convergence_criterion"):
         replacement.setdefault(kept, case["coupled_solver"][kept])
     case["coupled_solver"] = replacement
-    case_file.write_text(yaml.safe_dump(case, sort_keys=False))
+    write_case(case_file, case)
 
 
 @contextlib.contextmanager
@@ -57,7 +63,7 @@ def fresh_case(example, case, coupled_solver):
 
 
 def run_summary(work, case):
-    return json.loads((work / "results" / (Path(case).stem + ".summary.json")).read_text())
+    return read_summary(results_path(work / case))
 
 
 def run_once(cocopp, example, case, coupled_solver):
@@ -111,7 +117,8 @@ def coupler_instructions(cocopp, example, case, coupled_solver):
 def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--build", default=str(ROOT / "build"), help="build directory")
+    parser.add_argument("--build", help="build directory (default: the cocopp cocopp.executable "
+                                         "finds)")
     parser.add_argument("--repeat", type=int, default=10, help="number of runs")
     parser.add_argument("--example", default=str(ROOT / "examples/tube/flow_structure"))
     parser.add_argument("--case", default="case.yaml", help="case file inside the example")
@@ -120,7 +127,7 @@ def main():
                         help="also count the coupler's instructions per iteration (callgrind)")
     args = parser.parse_args()
 
-    cocopp = Path(args.build) / "bin" / "cocopp"
+    cocopp = Path(args.build) / "bin" / "cocopp" if args.build else find_cocopp()
     run_once(cocopp, args.example, args.case, args.coupled_solver)  # warm the file cache
     walls, step_coupler, coupler, iterations = [], [], [], None
     for _ in range(args.repeat):

@@ -4,7 +4,7 @@
 #   libexec/cocopp/ccx       ccx with cocopp's patches (where scripts/install-calculix.sh built it)
 #   include/cocopp/          the SDK's headers, under the same paths as in the source tree
 #   lib/                     libcocopp_sdk.a, libcocopp_protocol.a, cmake/cocopp/, pkgconfig/
-#   lib/python3/dist-packages/   the Python solver SDK (cocopp_sdk.py), the plots (cocopp_plot/)
+#   lib/python3/dist-packages/   the Python solver SDK (cocopp_sdk.py), the package cocopp/
 #   share/cocopp/            the scripts cocopp calls and the plot scripts; examples/
 #
 # Relocatable: cocopp finds its solvers, its ccx and its scripts relative to its own

@@ -20,7 +20,8 @@ data (in the scenarios run), 0 otherwise.
   /usr/bin/python3 scripts/fault_injection.py                    # 10 trials a scenario
   /usr/bin/python3 scripts/fault_injection.py --trials 1         # the CI test's short form
   /usr/bin/python3 scripts/fault_injection.py --scenarios disk_full --trials 3   # root: tmpfs
-Needs h5py (Debian's python3-h5py) and the built cocopp (--bin, default build/bin).
+Needs h5py (Debian's python3-h5py) and the built cocopp (--bin, default: the one the package
+cocopp finds, cocopp.executable).
 """
 import argparse
 import os
@@ -33,7 +34,9 @@ import sys
 import tempfile
 import time
 
-import h5py
+from cocopp import case
+from cocopp.executable import find_cocopp
+from cocopp.results import ResultsFile, ResultsFileError, results_path
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 STEPS = 400
@@ -42,20 +45,21 @@ HANG_LIMIT = 60.0     # s: a coupler still running after this hangs
 
 
 def case_text(steps=STEPS, flow=None, transport="pipe", state_interval=0):
-    flow = flow or "{type: tube_flow, name: flow, working_directory: flow"
-    return f"""settings: {{delta_t: 1.0e-4, number_of_timesteps: {steps}, state_interval: {state_interval}}}
-coupled_solver:
-  type: iqni
-  omega: 0.05
-  model: {{type: ls, q: 10, min_significant: 1.0e-12}}
-  predictor: {{type: linear}}
-  convergence_criterion:
-    type: or
-    criteria: [{{type: relative_norm, tolerance: 1.0e-6}}, {{type: iteration_limit, maximum: 15}}]
-solver_wrappers:
-  - {flow}, timeout: {SOLVER_TIMEOUT}, transport: {transport}}}
-  - {{type: tube_structure, name: structure, working_directory: structure, timeout: {SOLVER_TIMEOUT}, transport: {transport}}}
-"""
+    """The tube case of every trial; `flow` replaces the flow solver (its type, name, ...)."""
+    flow = flow or {"type": "tube_flow", "name": "flow", "working_directory": "flow"}
+    structure = {"type": "tube_structure", "name": "structure", "working_directory": "structure"}
+    process = {"timeout": SOLVER_TIMEOUT, "transport": transport}
+    criteria = [{"type": "relative_norm", "tolerance": 1.0e-6},
+                {"type": "iteration_limit", "maximum": 15}]
+    return case.dump({
+        "settings": case.flow({"delta_t": 1.0e-4, "number_of_timesteps": steps,
+                               "state_interval": state_interval}),
+        "coupled_solver": {
+            "type": "iqni", "omega": 0.05,
+            "model": case.flow({"type": "ls", "q": 10, "min_significant": 1.0e-12}),
+            "predictor": case.flow({"type": "linear"}),
+            "convergence_criterion": {"type": "or", "criteria": [case.flow(c) for c in criteria]}},
+        "solver_wrappers": [case.flow({**flow, **process}), case.flow({**structure, **process})]})
 
 
 class Trial:
@@ -118,13 +122,14 @@ class Trial:
         return int(steps[-1]) if steps else 0
 
     def results_steps(self):
-        path = os.path.join(self.dir, "results", "case.h5")
-        if not os.path.exists(path):
+        """Steps in the results file, None if there is none or it cannot be read."""
+        path = results_path(self.case)
+        if not path.exists():
             return None
         try:
-            with h5py.File(path, "r") as f:
-                return len(f["steps/step"])
-        except Exception:
+            with ResultsFile(path) as results:
+                return len(results.steps)
+        except (ResultsFileError, Exception):
             return None
 
 
@@ -239,8 +244,9 @@ def protocol_abuse(trial, rng):
     mode = ABUSES[_abuse_count[0] % len(ABUSES)]
     _abuse_count[0] += 1
     fake = os.path.join(ROOT, "scripts", "fault_solver.py")
-    trial.write_case(case_text(flow="{type: process, name: flow, working_directory: flow, "
-                                    f"command: [/usr/bin/python3, {fake}]"))
+    fault_flow = {"type": "process", "name": "flow", "working_directory": "flow",
+                  "command": ["/usr/bin/python3", fake]}
+    trial.write_case(case_text(flow=fault_flow))
     trial.start(extra_env={"COCOPP_FAULT": mode, "COCOPP_FAULT_STEP": str(rng.randint(1, 5))})
     code, hung = trial.wait()
     text = trial.output()
@@ -319,8 +325,8 @@ DEFAULT = list(SCENARIOS)
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--bin", default=os.path.join(ROOT, "build", "bin"),
-                        help="directory of the built cocopp (default build/bin)")
+    parser.add_argument("--bin", help="directory of the built cocopp (default: the one "
+                                       "cocopp.executable finds, e.g. build/bin)")
     parser.add_argument("--trials", type=int, default=10, help="trials per scenario (10)")
     parser.add_argument("--scenarios", default=",".join(DEFAULT),
                         help="comma-separated, of: " + ", ".join(SCENARIOS) +
@@ -328,7 +334,7 @@ def main():
     parser.add_argument("--seed", type=int, default=1, help="random seed (1)")
     parser.add_argument("--keep", action="store_true", help="keep the trial directories")
     args = parser.parse_args()
-    binary = os.path.join(args.bin, "cocopp")
+    binary = os.path.join(args.bin, "cocopp") if args.bin else str(find_cocopp())
     if not os.access(binary, os.X_OK):
         sys.exit(f"fault_injection: no cocopp at {binary} (build first, or give --bin)")
     names = [n.strip() for n in args.scenarios.split(",") if n.strip()]

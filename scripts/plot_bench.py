@@ -7,7 +7,7 @@ run labelled with its variant. Wall time includes the solvers' start-up, which d
 runs; the iterations are free of timing noise; the solvers' time is what the iterations cost.
 An error of exactly 0 (a run identical to the reference) is drawn on the bottom edge with the
 label "(= reference)"; runs without an error are listed under the plot. The figure is made by
-the module cocopp_plot (next to this script, or installed).
+the package cocopp (cocopp.plot.bench, docs/python.md).
 
     /usr/bin/python3 scripts/plot_bench.py results/bench/bench.json -o results/bench/bench.png
 """
@@ -15,9 +15,11 @@ import argparse
 import os
 import sys
 
-sys.path[:0] = [os.path.dirname(os.path.realpath(__file__)),  # the source tree: scripts/
-                os.path.join(os.path.dirname(os.path.realpath(__file__)),  # an install
-                             "..", "..", "lib", "python3", "dist-packages")]
+# The package cocopp beside this script, as cocopp bench runs it without a PYTHONPATH: a
+# checkout's python/, or an install's (and the build tree's) lib/python3/dist-packages.
+HERE = os.path.dirname(os.path.realpath(__file__))
+sys.path[:0] = [os.path.join(HERE, "..", "python"),
+                os.path.join(HERE, "..", "..", "lib", "python3", "dist-packages")]
 
 
 def parse_arguments(argv):
@@ -36,9 +38,10 @@ def main(argv):
     import matplotlib
 
     matplotlib.use("Agg")  # no display needed
-    from cocopp_plot import bench
+    from cocopp.plot import bench
+    from cocopp.results import read_bench
 
-    bench.plot_bench(bench.load(args.bench_json), args.output, args.error, args.include_reference)
+    bench.plot_bench(read_bench(args.bench_json), args.output, args.error, args.include_reference)
     print(f"wrote {args.output}")
     return 0
 

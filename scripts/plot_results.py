@@ -4,7 +4,7 @@ step, and the interface at chosen steps, to one PNG; on request also the history
 space-time map and an animation of a variable along the interface.
 
 Needs h5py and matplotlib (Debian: python3-h5py, python3-matplotlib); the figures are in the
-module cocopp_plot (next to this script, or installed). The file layout is in docs/results.md.
+package cocopp (cocopp.plot, docs/python.md). The file layout is in docs/results.md.
 A running cocopp keeps its results file locked: use --live to read it anyway.
 
 Examples:
@@ -20,16 +20,18 @@ import argparse
 import os
 import sys
 
-sys.path[:0] = [os.path.dirname(os.path.realpath(__file__)),  # the source tree: scripts/
-                os.path.join(os.path.dirname(os.path.realpath(__file__)),  # an install
-                             "..", "..", "lib", "python3", "dist-packages")]
+# The package cocopp beside this script, as cocopp bench runs it without a PYTHONPATH: a
+# checkout's python/, or an install's (and the build tree's) lib/python3/dist-packages.
+HERE = os.path.dirname(os.path.realpath(__file__))
+sys.path[:0] = [os.path.join(HERE, "..", "python"),
+                os.path.join(HERE, "..", "..", "lib", "python3", "dist-packages")]
 import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")  # files only; no display needed
 import matplotlib.pyplot as plt  # noqa: E402
 
-from cocopp_plot import history, interface, residuals  # noqa: E402
-from cocopp_plot.results import AXES, ResultsFile  # noqa: E402
+from cocopp.plot import history, interface, residuals  # noqa: E402
+from cocopp.results import AXES, ResultsFile  # noqa: E402
 
 
 def parse_arguments(argv):
@@ -92,8 +94,8 @@ def main(argv=None):
             sys.exit("the results file has no time steps yet")
         overview(results, args, args.output or stem + ".png")
         if args.history or args.point:
-            series, where = (history.watchpoint_series(results, args.history) if args.history
-                             else history.nearest_point_series(results, args.point))
+            series, where = (results.watchpoint_series(args.history) if args.history
+                             else results.nearest_point_series(args.point))
             figure, axes = plt.subplots(len(series), 1, figsize=(8, 2.6 * len(series)),
                                         sharex=True, constrained_layout=True, squeeze=False)
             history.plot_history(list(axes[:, 0]), series, where)

@@ -20,12 +20,12 @@ per step against the number of unstable modes, one line per variant.
     /usr/bin/python3 scripts/tube_modes.py examples/tube/stability/results/stability -o stability.png
 """
 import argparse
-import json
 import math
 import os
 import sys
 
-import yaml
+from cocopp.case import read as load_yaml
+from cocopp.results import bench_run_directory, read_bench
 
 
 def parse_arguments(argv):
@@ -44,11 +44,6 @@ def gauss_seidel_factors(rho_f, rho_s, e, h, diameter, length, cells, delta_t):
         k = j * math.pi / length
         factors.append(2 * rho_f / (rho_s * h * r0 * k * k) / (1 + omega_r2 * delta_t**2))
     return factors
-
-
-def load_yaml(path):
-    with open(path) as f:
-        return yaml.safe_load(f)
 
 
 def solver_input(run_directory, case, solver_type, default_file):
@@ -76,10 +71,6 @@ def tube_parameters(run_directory):
     }
 
 
-def run_directory(results, run):
-    return os.path.join(results, run.get("case", ""), run["name"])
-
-
 def cell(run):
     """Average iterations per step, or how the run ended."""
     average = run["average_iterations"]
@@ -93,14 +84,13 @@ def cell(run):
 
 
 def collect(results):
-    with open(os.path.join(results, "bench.json")) as f:
-        bench = json.load(f)
+    bench = read_bench(results)
     cases, variants = {}, []
     for run in bench["runs"]:
         name = run.get("case", "")
         if run["name"] not in variants:
             variants.append(run["name"])
-        parameters = tube_parameters(run_directory(results, run))
+        parameters = tube_parameters(bench_run_directory(results, run))
         case = cases.setdefault(name, {"parameters": parameters, "runs": {}})
         if parameters != case["parameters"]:
             raise ValueError(f"case {name}: variant {run['name']} has other tube parameters")

@@ -23,13 +23,13 @@ import json
 import math
 import pathlib
 
-import h5py
 import numpy as np
 
 import make_case
-from wire_results import (Frd, exit_force, film_forces, film_profile, integration_point_check,
-                          made_with, sector_wire_forces, step_files, surface,
-                          wire_forces)
+from cocopp.calculix import Frd
+from cocopp.results import ResultsFile, read_summary, results_path
+from wire_results import (exit_force, film_forces, film_profile, integration_point_check,
+                          made_with, sector_wire_forces, step_files, surface, wire_forces)
 
 HERE = pathlib.Path(__file__).resolve().parent
 PAPER_ITERATIONS = 5.33
@@ -49,17 +49,18 @@ def run_checks(case, p, refine, step=None):
     film = make_case.Film(p, refine)
     schedule = make_case.die_schedule(p)
     results = {}
-    with h5py.File(case / "results" / "case.h5", "r") as f:
-        steps = f["steps/step"][:]
-        row = len(steps) - 1 if step is None else int(np.flatnonzero(steps == step)[0])
-        time = float(f["steps/time"][row])
-        iterations = f["steps/iterations"][:]
+    results_file = results_path(case / "case.yaml")
+    with ResultsFile(results_file) as run:
+        steps = run.steps
+        row = len(steps) - 1 if step is None else run.row(step)
+        time = float(run.times[row])
+        iterations = run.iterations
         results["steps"] = int(len(steps))
         results["step"] = int(steps[row])
         results["iterations_per_step"] = float(np.mean(iterations))
         results["paper_iterations_per_step"] = PAPER_ITERATIONS
 
-        z, thickness, radial = film_profile(f, film, schedule, row)
+        z, thickness, radial = film_profile(run, film, schedule, row)
         # Where the die's approach ends and the bearing begins (the cone's end, or the end of
         # the rounded transition after it).
         approach_end = film.entry + film.transition
@@ -69,7 +70,7 @@ def run_checks(case, p, refine, step=None):
         alpha = math.radians(die["half_angle_degrees"])
         results["wilson_walowit_h0"] = (3 * lubricant["viscosity"] * wire["drawing_speed"]
                                         / ((wire["yield_stress"] - back_stress) * math.tan(alpha)))
-        forces = film_forces(f, film, schedule, row)
+        forces = film_forces(run, film, schedule, row)
     results.update({f"film_{k}": v for k, v in forces.items()})
 
     frd_path = step_files(case)[results["step"]]
@@ -81,8 +82,7 @@ def run_checks(case, p, refine, step=None):
     film_axial = forces["shear_axial"] + forces["pressure_axial"]
     results["force_balance_error_film"] = (pull - (wire["back_force"] - film_axial)) / pull
     # A run still going (or killed) has no summary yet: its steps so far are checked all the same.
-    summary_file = case / "results" / "case.summary.json"
-    summary = json.loads(summary_file.read_text()) if summary_file.exists() else {}
+    summary = read_summary(results_file, missing_ok=True)
     axisymmetric = p["mesh"].get("wire_model", "axisymmetric") == "axisymmetric"
     last_of_run = (results["step"] == results["steps"]
                    and summary.get("status") in ("completed", "stalled"))

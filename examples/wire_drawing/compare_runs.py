@@ -8,25 +8,25 @@ What the displacement-driven wire is checked with against the load-driven one
 
 Prints one line per time step both runs have; --steps 1,4,10 picks steps."""
 import argparse
-import os
 import sys
 from pathlib import Path
 
-os.environ.setdefault("HDF5_USE_FILE_LOCKING", "FALSE")  # a run still writing may be compared
-import h5py  # noqa: E402
-import numpy as np  # noqa: E402
+import numpy as np
+
+from cocopp.results import ResultsFile, results_path
 
 
 def read(run):
     """Steps, the film's wall displacement (steps x points x 3) and pressure of a run."""
-    path = Path(run) / "results" / "case.h5"
+    path = results_path(Path(run) / "case.yaml")
     if not path.exists():
         sys.exit(f"compare_runs.py: {path}: no results (run the case first)")
-    with h5py.File(path, "r") as f:
-        wall = next(iter(f["x"].values()))
-        faces = next(part for part in f["y"].values() if "pressure" in part)
-        return (f["steps/step"][:], wall["coordinates"][:], wall["displacement"][:],
-                faces["pressure"][:, :, 0])
+    with ResultsFile(path, live=True) as results:  # a run still writing may be compared
+        wall = results.model_parts("x")[0]
+        faces = results.find_part("y", "pressure")
+        return (results.steps, results.coordinates("x", wall),
+                results.values("x", wall, "displacement"),
+                results.values("y", faces, "pressure")[:, :, 0])
 
 
 def main():

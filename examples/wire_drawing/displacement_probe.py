@@ -18,12 +18,13 @@ built, in $COCOPP_DEPS_DIR or the checkout's build-deps/.
 """
 import argparse
 import json
-import os
 import pathlib
 import re
 import time
 
-from wire_results import applied_loads, dat_block, deck_elements, restart_ccx
+from cocopp.calculix import dat_block, deck_elements
+from cocopp.executable import patched_ccx
+from wire_results import applied_loads, restart_ccx
 
 HERE = pathlib.Path(__file__).resolve().parent
 PRESSURE = re.compile(r"^(\d+), P2, (\S+)$")
@@ -83,8 +84,7 @@ def main():
     parser.add_argument("--squeeze", type=float, nargs="+", default=[0.55e-6, 2e-6, 5e-6],
                         help="inward radial moves of the nodes under the film, m (default: "
                              "the die's closing per step, then 4 and 9 times that)")
-    deps = pathlib.Path(os.environ.get("COCOPP_DEPS_DIR", HERE.parents[1] / "build-deps"))
-    parser.add_argument("--ccx", default=str(deps / "calculix/bin/ccx"))
+    parser.add_argument("--ccx", default=str(patched_ccx()))
     args = parser.parse_args()
     structure = pathlib.Path(args.case) / "structure"
     for needed in ("cocopp_converged.rout", "cocopp_iteration.inp", "cocopp_loads.inp"):
@@ -94,7 +94,7 @@ def main():
     if not pathlib.Path(args.ccx).is_file():
         raise SystemExit(f"displacement_probe.py: no ccx at {args.ccx} "
                          "(scripts/install-calculix.sh builds it; --ccx names another)")
-    connectivity = deck_elements(structure / "wire.inp")
+    connectivity = deck_elements((structure / "wire.inp").read_text())
     pressures, _ = applied_loads(structure / "cocopp_loads.inp")
     under_film = {element for element, p in pressures.items() if p != 0.0}
     displacement, source = last_step_displacements(structure)

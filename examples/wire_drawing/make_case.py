@@ -13,13 +13,16 @@ changes one parameter, e.g. --set die.reduction=0 (the die held for the whole ru
 the same film and wire on the coarser meshes of the `surrogate` parameters (IQN-ILSM);
 --set coupling.type=ibqn couples by IBQN, with a model of each solver's Jacobian.
 """
-import copy
 import argparse
+import copy
 import math
 import pathlib
 import sys
 
 import yaml
+
+from cocopp import calculix, case, openfoam
+from cocopp.openfoam import header
 
 HERE = pathlib.Path(__file__).resolve().parent
 TEXT_PARAMETERS = {"wire_element", "wire_model", "model", "type", "drive", "film_motion"}  # others: numbers
@@ -80,12 +83,6 @@ class Film:
     @property
     def length(self):
         return self.entry + self.bearing
-
-
-def header(cls, name, location=None):
-    where = f'\n    location    "{location}";' if location else ""
-    return (f"FoamFile\n{{\n    version     2.0;\n    format      ascii;\n    class       {cls};"
-            f"{where}\n    object      {name};\n}}\n\n")
 
 
 def wedge_point(r, z, side, film):
@@ -280,7 +277,7 @@ def quad8(node, i, k):
     counter-clockwise in the (r, z) plane, then the mid-side nodes."""
     ids = [(i, k), (i + 2, k), (i + 2, k + 2), (i, k + 2),
            (i + 1, k), (i + 2, k + 1), (i + 1, k + 2), (i, k + 1)]
-    return ", ".join(str(node(a, b)) for a, b in ids)
+    return [node(a, b) for a, b in ids]
 
 
 # C3D20 local nodes in the doubled grid (radial, hoop, axial offsets 0..2).
@@ -321,29 +318,24 @@ def sector_wire_deck(p, refine):
     def exists(i, j, k):
         return i % 2 + j % 2 + k % 2 <= 1 and not (i == 0 and j > 0)
 
-    lines = [f"** The drawn wire (make_case.py): a {mesh['sector_degrees']:g} degree sector of "
-             "C3D20(R) (C3D15 at the axis), x = radius, y = axis, hoop towards -z.",
-             "*NODE, NSET=NALL"]
-    for k in range(nk):
-        for j in range(3):
-            for i in range(ni):
-                if exists(i, j, k):
-                    r, theta = radius * i / (ni - 1), angle * j / 2
-                    lines.append(f"{node(i, j, k)}, {r * math.cos(theta):.13g}, "
-                                 f"{start + length * k / (nk - 1):.13g}, "
-                                 f"{-r * math.sin(theta):.13g}")
+    def position(i, j, k):
+        r, theta = radius * i / (ni - 1), angle * j / 2
+        return (node(i, j, k), r * math.cos(theta), start + length * k / (nk - 1),
+                -r * math.sin(theta))
+
+    deck = calculix.Deck(f"** The drawn wire (make_case.py): a {mesh['sector_degrees']:g} degree "
+                         "sector of C3D20(R) (C3D15 at the axis), x = radius, y = axis, hoop "
+                         "towards -z.")
+    deck.nodes(position(i, j, k) for k in range(nk) for j in range(3) for i in range(ni)
+               if exists(i, j, k))
 
     def element(m, q):
         return 1 + m + radial * q
 
     def connectivity(table, m, q):
-        ids = [str(node(2 * m + a, b, 2 * q + c)) for a, b, c in table]
-        # ccx reads at most 16 entries a line (the element number is the first).
-        return ", ".join([str(element(m, q))] + ids[:15]) + (",\n" + ", ".join(ids[15:])
-                                                              if len(ids) > 15 else "")
+        return element(m, q), [node(2 * m + a, b, 2 * q + c) for a, b, c in table]
 
-    lines.append("*ELEMENT, TYPE=C3D15, ELSET=EALL")
-    lines.extend(connectivity(WEDGE15, 0, q) for q in range(axial))
+    deck.elements("C3D15", (connectivity(WEDGE15, 0, q) for q in range(axial)))
     brick = {"CAX8R": "C3D20R", "CAX8": "C3D20"}[mesh["wire_element"]]
     # The outer layer, where the film's loads and the drive act, may be fully integrated: a
     # loaded node next to driven ones (the film's edge) then cannot take C3D20R's zero-energy
@@ -352,35 +344,26 @@ def sector_wire_deck(p, refine):
     cards = ([(brick, range(1, radial))] if skin == brick else
              [(brick, range(1, radial - 1)), (skin, [radial - 1])])
     for kind, layers in cards:
-        lines.append(f"*ELEMENT, TYPE={kind}, ELSET=EALL")
-        lines.extend(connectivity(HEX20, m, q) for q in range(axial) for m in layers)
-
-    def node_set(name, nodes):
-        lines.append(f"*NSET, NSET={name}")
-        lines.extend(f"{n}," for n in nodes)
-
-    node_set("SURFACEN", [node(ni - 1, 0, k) for k in range(nk)])
-    node_set("SURFACEALL", [node(ni - 1, j, k) for k in range(nk) for j in range(3)
-                            if exists(ni - 1, j, k)])
-    node_set("AXIS", [node(0, 0, k) for k in range(nk)])
-    node_set("OFFAXIS", [node(i, j, k) for k in range(nk) for j in range(3)
-                         for i in range(1, ni) if exists(i, j, k)])
-    node_set("EXIT", [node(i, j, nk - 1) for j in range(3) for i in range(1, ni)
-                      if exists(i, j, nk - 1)])
-    node_set("EXITAXIS", [node(0, 0, nk - 1)])
-    lines.append("*SURFACE, NAME=SURFACE, TYPE=ELEMENT")  # r = R: face S4 (xi = 1)
-    lines.extend(f"{element(radial - 1, q)}, S4" for q in range(axial))
-    lines.append("*ELSET, ELSET=SKIN")
-    lines.extend(f"{element(radial - 1, q)}," for q in range(axial))
-    lines.append("*ELSET, ELSET=ENTRY")  # y min: face S1 of bricks and wedges alike
-    lines.extend(f"{element(m, 0)}," for m in range(radial))
-    lines += ["*TRANSFORM, NSET=OFFAXIS, TYPE=C", "0., 0., 0., 0., 1., 0."]
-    lines += material_and_step(p, [
+        deck.elements(kind, (connectivity(HEX20, m, q) for q in range(axial) for m in layers))
+    deck.node_set("SURFACEN", [node(ni - 1, 0, k) for k in range(nk)])
+    deck.node_set("SURFACEALL", [node(ni - 1, j, k) for k in range(nk) for j in range(3)
+                                 if exists(ni - 1, j, k)])
+    deck.node_set("AXIS", [node(0, 0, k) for k in range(nk)])
+    deck.node_set("OFFAXIS", [node(i, j, k) for k in range(nk) for j in range(3)
+                              for i in range(1, ni) if exists(i, j, k)])
+    deck.node_set("EXIT", [node(i, j, nk - 1) for j in range(3) for i in range(1, ni)
+                           if exists(i, j, nk - 1)])
+    deck.node_set("EXITAXIS", [node(0, 0, nk - 1)])
+    deck.surface("SURFACE", [(element(radial - 1, q), "S4") for q in range(axial)])  # r = R: xi = 1
+    deck.element_set("SKIN", [element(radial - 1, q) for q in range(axial)])
+    deck.element_set("ENTRY", [element(m, 0) for m in range(radial)])  # y min: face S1 of all
+    deck.add("*TRANSFORM, NSET=OFFAXIS, TYPE=C", "0., 0., 0., 0., 1., 0.")
+    deck.add(*material_and_step(p, [
         "** Axisymmetric: no hoop displacement; the axis stays on the axis.",
         "*BOUNDARY", "OFFAXIS, 2, 2", "AXIS, 1, 1", "AXIS, 3, 3",
         "** The exit end held axially (local 3 off the axis, global y on it).",
-        "EXIT, 3, 3", "EXITAXIS, 2, 2"])
-    return "\n".join(lines) + "\n"
+        "EXIT, 3, 3", "EXITAXIS, 2, 2"]))
+    return deck.text()
 
 
 def material_and_step(p, boundary):
@@ -432,33 +415,22 @@ def wire_deck(p, refine):
     element_type = p["mesh"]["wire_element"]
     if element_type not in ("CAX8", "CAX8R"):
         sys.exit(f"make_case.py: mesh.wire_element is {element_type}: use CAX8 or CAX8R")
-    lines = [f"** The drawn wire (make_case.py): axisymmetric {element_type}, x = radius, "
-             "y = axis (z).", "*NODE, NSET=NALL"]
-    for k in range(nk):
-        for i in range(ni):
-            if i % 2 + k % 2 <= 1:
-                lines.append(f"{node(i, k)}, {radius * i / (ni - 1):.13g}, "
-                             f"{start + length * k / (nk - 1):.13g}, 0.")
-    lines.append(f"*ELEMENT, TYPE={element_type}, ELSET=EALL")
-    for q in range(axial):
-        for m in range(radial):
-            lines.append(f"{element(m, q)}, {quad8(node, 2 * m, 2 * q)}")
-
-    def node_set(name, nodes):
-        lines.append(f"*NSET, NSET={name}")
-        lines.extend(f"{n}," for n in nodes)
-
-    node_set("SURFACEN", [node(ni - 1, k) for k in range(nk)])
-    node_set("AXIS", [node(0, k) for k in range(nk)])
-    node_set("EXIT", [node(i, nk - 1) for i in range(ni)])
-    lines.append("*SURFACE, NAME=SURFACE, TYPE=ELEMENT")  # r = R: edge S2 (nodes 2-3)
-    lines.extend(f"{element(radial - 1, q)}, S2" for q in range(axial))
-    lines.append("*ELSET, ELSET=SKIN")  # the outer column: stresses at its integration points
-    lines.extend(f"{element(radial - 1, q)}," for q in range(axial))
-    lines.append("*ELSET, ELSET=ENTRY")  # y min: edge S1 (nodes 1-2)
-    lines.extend(f"{element(m, 0)}," for m in range(radial))
-    lines += material_and_step(p, ["*BOUNDARY", "AXIS, 1, 1", "EXIT, 2, 2"])
-    return "\n".join(lines) + "\n"
+    deck = calculix.Deck(f"** The drawn wire (make_case.py): axisymmetric {element_type}, "
+                         "x = radius, y = axis (z).")
+    deck.nodes((node(i, k), radius * i / (ni - 1), start + length * k / (nk - 1), "0.")
+               for k in range(nk) for i in range(ni) if i % 2 + k % 2 <= 1)
+    deck.elements(element_type, ((element(m, q), quad8(node, 2 * m, 2 * q))
+                                 for q in range(axial) for m in range(radial)))
+    deck.node_set("SURFACEN", [node(ni - 1, k) for k in range(nk)])
+    deck.node_set("AXIS", [node(0, k) for k in range(nk)])
+    deck.node_set("EXIT", [node(i, nk - 1) for i in range(ni)])
+    deck.surface("SURFACE", [(element(radial - 1, q), "S2")  # r = R: edge S2 (nodes 2-3)
+                             for q in range(axial)])
+    # The outer column: stresses at its integration points.
+    deck.element_set("SKIN", [element(radial - 1, q) for q in range(axial)])
+    deck.element_set("ENTRY", [element(m, 0) for m in range(radial)])  # y min: edge S1 (nodes 1-2)
+    deck.add(*material_and_step(p, ["*BOUNDARY", "AXIS, 1, 1", "EXIT, 2, 2"]))
+    return deck.text()
 
 
 def case_file(p):
@@ -468,97 +440,122 @@ def case_file(p):
         sys.exit(f"make_case.py: coupling.type: '{coupling['type']}' is not iqni, iqnism or ibqn")
     if coupling["type"] != "iqni" and (coupling["mixing"] != 1.0 or coupling["model"] != "ls"):
         sys.exit(f"make_case.py: coupling.type {coupling['type']} takes model ls and mixing 1")
-    mixing = ("" if coupling["type"] != "iqni" else
-              f"  mixing: {coupling['mixing']:g}                      "
-              "# 1: IQN-ILS; < 1: the unexplained residual relaxed (ls only)\n")
-    model = f"""    type: {coupling['model']}                      # ls: IQN-ILS (the paper's); mvmf: IQN-MVJ
-    q: {coupling['reuse_steps']}                         # earlier steps whose secant information is reused
-    min_significant: {coupling['min_significant']:g}       # filter of nearly dependent secant columns:
-    min_significant_relative: {coupling['min_significant_relative']:g}      #   absolute and relative thresholds
-"""
-    # ibqn: a model of the film's Jacobian (model_f) and one of the wire's (model_s).
-    models = (f"  model_f:\n{model}  model_s:\n{model}" if coupling["type"] == "ibqn" else
-              f"{mixing}  model:\n{model}")
-    return f"""# The dry wire drawing case (docs/wire-drawing.md), written by make_case.py.
-#   cocopp run case.yaml
-settings:
-  delta_t: {time['delta_t']:.17g}
-  number_of_timesteps: {time['steps']}
-  state_interval: {time['state_interval']}               # a state to restart from (cocopp run --restart)
-coupled_solver:
-  type: {coupling['type']}                      # interface quasi-Newton, as the paper
-  omega: {coupling['omega']:g}                     # relaxation of a step's first update
-{models}{surrogate_block(p) if coupling['type'] == 'iqnism' else ''}  predictor:
-    type: linear
-  convergence_criterion:
-    type: or
-    criteria:
-      - type: absolute_norm       # the paper's 0.01 um on the 2-norm of the displacement residual
-        tolerance: 1.0e-8
-      - type: iteration_limit
-        maximum: {coupling['max_iterations']}
-solver_wrappers:
-{solver_wrappers(p, "")}"""
+    coupled_solver = {
+        "type": case.commented(coupling["type"], "interface quasi-Newton, as the paper"),
+        "omega": case.commented(coupling["omega"], "relaxation of a step's first update")}
+    if coupling["type"] == "ibqn":  # a model of the film's Jacobian and one of the wire's
+        coupled_solver.update(model_f=secant_model(coupling), model_s=secant_model(coupling))
+    else:
+        if coupling["type"] == "iqni":
+            coupled_solver["mixing"] = case.commented(
+                coupling["mixing"], "1: IQN-ILS; < 1: the unexplained residual relaxed (ls only)")
+        coupled_solver["model"] = secant_model(coupling)
+    if coupling["type"] == "iqnism":
+        coupled_solver["surrogate"] = surrogate(p)
+    coupled_solver["predictor"] = {"type": "linear"}
+    coupled_solver["convergence_criterion"] = {"type": "or", "criteria": [
+        {"type": case.commented("absolute_norm", "the paper's 0.01 um on the 2-norm of the "
+                                                 "displacement residual"),
+         "tolerance": 1.0e-8},
+        {"type": "iteration_limit", "maximum": coupling["max_iterations"]}]}
+    settings = {"delta_t": time["delta_t"], "number_of_timesteps": time["steps"],
+                "state_interval": case.commented(time["state_interval"], "a state to restart "
+                                                 "from (cocopp run --restart)")}
+    return case.dump({"settings": settings, "coupled_solver": coupled_solver,
+                      "solver_wrappers": solver_wrappers(p, "")},
+                     header="The dry wire drawing case (docs/wire-drawing.md), written by "
+                            "make_case.py.\n  cocopp run case.yaml")
 
 
-def surrogate_block(p):
+def secant_model(coupling):
+    return {"type": case.commented(coupling["model"], "ls: IQN-ILS (the paper's); mvmf: IQN-MVJ"),
+            "q": case.commented(coupling["reuse_steps"],
+                                "earlier steps whose secant information is reused"),
+            "min_significant": case.commented(coupling["min_significant"],
+                                              "filter of nearly dependent secant columns:"),
+            "min_significant_relative": case.commented(coupling["min_significant_relative"],
+                                                       "  absolute and relative thresholds")}
+
+
+def surrogate(p):
     """iqnism's surrogate: the case on the coarser meshes in surrogate/, its own iqni."""
     s = p["surrogate"]
-    wrappers = "\n".join("    " + line if line else line
-                         for line in solver_wrappers(p, "surrogate/").split("\n"))
-    return f"""  surrogate:                      # the case on coarser meshes (surrogate/), solved first
-    synchronize: true             # every step; its Jacobian guides this coupling
-    coupled_solver:
-      type: iqni
-      omega: {p['coupling']['omega']:g}
-      model: {{type: {s['model']}}}
-      predictor: {{type: linear}}
-      convergence_criterion:
-        type: or
-        criteria:
-          - {{type: absolute_norm, tolerance: {s['tolerance']:g}}}
-          - {{type: iteration_limit, maximum: {s['max_iterations']}}}
-    mapper:                       # the film's wall points (wedge) on both meshes, along the axis
-      type: linear
-      directions: [x, z]
-    solver_wrappers:
-{wrappers.rstrip()}
-"""
+    coupled_solver = {
+        "type": "iqni", "omega": p["coupling"]["omega"], "model": case.flow({"type": s["model"]}),
+        "predictor": case.flow({"type": "linear"}),
+        "convergence_criterion": {"type": "or", "criteria": [
+            case.flow({"type": "absolute_norm", "tolerance": s["tolerance"]}),
+            case.flow({"type": "iteration_limit", "maximum": s["max_iterations"]})]}}
+    return case.commented({
+        "synchronize": case.commented(True, "every step; its Jacobian guides this coupling"),
+        "coupled_solver": coupled_solver,
+        "mapper": case.commented({"type": "linear", "directions": ["x", "z"]},
+                                 "the film's wall points (wedge) on both meshes, along the axis"),
+        "solver_wrappers": solver_wrappers(p, "surrogate/")},
+        "the case on coarser meshes (surrogate/), solved first")
 
 
 def solver_wrappers(p, prefix):
     """The film and the wire, in the directories under `prefix`."""
     name = "surrogate_" if prefix else ""
-    return f"""  - type: openfoam                # F: the film's wire wall displacement -> its loads
-    name: {name}film
-    working_directory: {prefix}fluid
-    boundary_names: [wire]
-{film_drive_keys(p)}    timeout: 600
-  - type: mapped                  # S: the loads -> the wire's surface displacement
-    name: {name}wire
-    coordinates: current          # a sliding interface: map on the current positions ...
-    rebuild: time_step            # ... every time step
-    frame_velocity: [0, {p['wire']['drawing_speed']:.17g}, 0]       # the wire's frame moves with its exit end
-    solver_wrapper:
-      type: calculix
-      working_directory: {prefix}structure
-      input_file: wire.inp
-      interface_surface: SURFACE
-      interface_node_set: SURFACEN
-      threads: {p['calculix']['threads']}                    # the film waits while the wire is solved
-      initial_increment: previous_iteration  # where ccx cut a step back, the step's next
-                                  # iterations start at the increment that converged
-{wire_drive_keys(p)}      timeout: 600
-{input_mappers(p)}{round_trip_keys(p)}    output_mapper:                # wire surface nodes (r, axis) -> film wall points (wedge)
-      type: linear
-      components: [x, y]          # only the radial displacement moves the film: it slides
-      directions: [x, z]          # across the wedge and along the axis, not radially: the film's
-                                  # points lag the wire's radius by an iteration, and a 3D search
-                                  # then picks skewed triangles (a jagged wall, 10x rougher)
-      transformers:
-        - {{type: axisymmetric_2d_to_3d, direction_axial: y, direction_radial: x, angle: {p['mesh']['wedge_degrees']:.17g}}}
-        - {{type: permutation, permutation: [2, 0, 1]}}   # (r, axis, third) -> film (third, r, axis)
-"""
+    film = {"type": case.commented("openfoam", "F: the film's wire wall displacement -> its loads"),
+            "name": f"{name}film", "working_directory": f"{prefix}fluid",
+            "boundary_names": ["wire"]}
+    if displacement_driven(p):
+        film["gap_patch"] = case.commented("die", "the film's gap and wall position, for the wire")
+    film["timeout"] = 600
+    wire = {"type": case.commented("mapped", "S: the loads -> the wire's surface displacement"),
+            "name": f"{name}wire",
+            "coordinates": case.commented("current", "a sliding interface: map on the current "
+                                                     "positions ..."),
+            "rebuild": case.commented("time_step", "... every time step"),
+            "frame_velocity": case.commented([0, p["wire"]["drawing_speed"], 0],
+                                             "the wire's frame moves with its exit end"),
+            "solver_wrapper": calculix_wrapper(p, prefix),
+            "input_mapper": input_mapper(p)}
+    if displacement_driven(p):
+        wire["exact_round_trip"] = case.commented(
+            ["wall_displacement"], "the wall's position onto the nodes so that the\n"
+            "output mapper gives it back exactly: the balance is then the\n"
+            "coupling's fixed point (docs/mappers.md)")
+    wire["output_mapper"] = case.commented(output_mapper(p), "wire surface nodes (r, axis) -> "
+                                                             "film wall points (wedge)")
+    return [film, wire]
+
+
+def calculix_wrapper(p, prefix):
+    wrapper = {"type": "calculix", "working_directory": f"{prefix}structure",
+               "input_file": "wire.inp", "interface_surface": "SURFACE",
+               "interface_node_set": "SURFACEN",
+               "threads": case.commented(p["calculix"]["threads"],
+                                         "the film waits while the wire is solved"),
+               "initial_increment": case.commented(
+                   "previous_iteration", "where ccx cut a step back, the step's next\n"
+                   "iterations start at the increment that converged")}
+    if displacement_driven(p):
+        wrapper["interface_drive"] = case.commented(
+            "displacement", "the surface under the film driven by its wall position")
+        wrapper["driven_node_set"] = case.commented(
+            "SURFACEALL", "all of the sector's surface (SURFACEN: its x-y side)")
+        wrapper["surface_stiffness"] = case.commented(
+            float(f"{surface_stiffness(p):.6g}"), "Pa/m, the Newton step's wire stiffness")
+    wrapper["timeout"] = 600
+    return wrapper
+
+
+def output_mapper(p):
+    return {"type": "linear",
+            "components": case.commented(["x", "y"], "only the radial displacement moves the "
+                                                     "film: it slides"),
+            "directions": case.commented(
+                ["x", "z"], "across the wedge and along the axis, not radially: the film's\n"
+                "points lag the wire's radius by an iteration, and a 3D search\n"
+                "then picks skewed triangles (a jagged wall, 10x rougher)"),
+            "transformers": [
+                case.flow({"type": "axisymmetric_2d_to_3d", "direction_axial": "y",
+                           "direction_radial": "x", "angle": p["mesh"]["wedge_degrees"]}),
+                case.commented(case.flow({"type": "permutation", "permutation": [2, 0, 1]}),
+                               "(r, axis, third) -> film (third, r, axis)")]}
 
 
 def displacement_driven(p):
@@ -583,49 +580,25 @@ def surface_stiffness(p):
     return math.pi * wire["young"] / ((1 - wire["poisson"] ** 2) * face)
 
 
-def input_mappers(p):
+def input_mapper(p):
     """Film faces -> wire faces; driven by displacement, first film points -> wire nodes."""
-    faces = """type: overlap               # each wire face: the length-weighted mean of the film faces it
-      directions: [y]             # overlaps along the axis, so the film's load is conserved; zero
-                                  # (ambient) for the part of a wire face outside the film
-      transformers:
-        - {type: permutation, permutation: [1, 2, 0]}   # film (x, y, z) -> (y, z, x)
-"""
+    to_wire_axes = case.commented(case.flow({"type": "permutation", "permutation": [1, 2, 0]}),
+                                  "film (x, y, z) -> (y, z, x)")
+    faces = {"type": case.commented("overlap", "each wire face: the length-weighted mean of the "
+                                               "film faces it\noverlaps along the axis, so the "
+                                               "film's load is conserved; zero\n(ambient) for the "
+                                               "part of a wire face outside the film"),
+             "directions": ["y"], "transformers": [to_wire_axes]}
     if not displacement_driven(p):
-        return ("    input_mapper:                 # film faces (axis z, radial y) -> wire faces "
-                "(r, axis)\n      " + faces)
-    return """    input_mapper:                 # a mapper per model part pair:
-      - type: linear              # film wall points -> the wire's drivable nodes: the wall's
-        directions: [y, z]        # position there, along the axis and across the wedge (an
-        max_distance: 1.0e-4      # interpolation, which exact_round_trip below corrects);
-        unmatched: zero           # zero beyond the film (not driven there)
-        transformers:
-          - {type: permutation, permutation: [1, 2, 0]}   # film (x, y, z) -> (y, z, x)
-      - """ + faces.replace("\n      ", "\n        ")
-
-
-def round_trip_keys(p):
-    if not displacement_driven(p):
-        return ""
-    return """    exact_round_trip: [wall_displacement]   # the wall's position onto the nodes so that the
-                                  # output mapper gives it back exactly: the balance is then the
-                                  # coupling's fixed point (docs/mappers.md)
-"""
-
-
-def film_drive_keys(p):
-    if not displacement_driven(p):
-        return ""
-    return "    gap_patch: die                # the film's gap and wall position, for the wire\n"
-
-
-def wire_drive_keys(p):
-    if not displacement_driven(p):
-        return ""
-    return f"""      interface_drive: displacement # the surface under the film driven by its wall position
-      driven_node_set: SURFACEALL   # all of the sector's surface (SURFACEN: its x-y side)
-      surface_stiffness: {surface_stiffness(p):.6g}   # Pa/m, the Newton step's wire stiffness
-"""
+        return case.commented(faces, "film faces (axis z, radial y) -> wire faces (r, axis)")
+    points = {"type": case.commented("linear", "film wall points -> the wire's drivable nodes: "
+                                               "the wall's\nposition there, along the axis and "
+                                               "across the wedge (an\ninterpolation, which "
+                                               "exact_round_trip below corrects);\nzero beyond "
+                                               "the film (not driven there)"),
+              "directions": ["y", "z"], "max_distance": 1.0e-4, "unmatched": "zero",
+              "transformers": [to_wire_axes]}
+    return case.commented([points, faces], "a mapper per model part pair:")
 
 
 def surrogate_parameters(p):
@@ -640,11 +613,7 @@ def surrogate_parameters(p):
 def write_solvers(p, refine, output):
     """fluid/ and structure/ under output; returns the film."""
     film = Film(p, refine)
-    for name, text in fluid_files(p, film).items():
-        path = output / "fluid" / name
-        path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(text)
-    (output / "fluid" / "Allmesh").chmod(0o755)
+    openfoam.write_case(output / "fluid", fluid_files(p, film))
     (output / "structure").mkdir(parents=True, exist_ok=True)
     model = p["mesh"]["wire_model"]
     if model not in ("axisymmetric", "sector"):

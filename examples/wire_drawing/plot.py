@@ -14,7 +14,6 @@ the paper's average of 5.33.
 import argparse
 import pathlib
 
-import h5py
 import matplotlib
 
 matplotlib.use("Agg")
@@ -22,7 +21,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import make_case  # noqa: E402
-from wire_results import (Frd, exit_force, film_profile, loads_profile, made_with,  # noqa: E402
+from cocopp.calculix import Frd  # noqa: E402
+from cocopp.results import ResultsFile, results_path  # noqa: E402
+from wire_results import (exit_force, film_profile, loads_profile, made_with,  # noqa: E402
                           step_files, surface)
 
 HERE = pathlib.Path(__file__).resolve().parent
@@ -45,18 +46,18 @@ def main():
     schedule = make_case.die_schedule(p)
     output = pathlib.Path(args.output) if args.output else case / "wire-drawing.png"
 
-    with h5py.File(case / "results" / "case.h5", "r") as f:
-        steps = f["steps/step"][:]
+    with ResultsFile(results_path(case / "case.yaml")) as results:
+        steps = results.steps
         if args.until is not None:
             steps = steps[steps <= args.until]
-        iterations = f["steps/iterations"][:len(steps)]
+        iterations = results.iterations[:len(steps)]
         held = min(p["time"]["held_steps"], len(steps)) - 1
         last = len(steps) - 1
         rows = sorted({held, last})
         fig, axes = plt.subplots(3, 2, figsize=(12, 12.5))
         (stress_ax, force_ax), (thick_ax, load_ax), (residual_ax, iteration_ax) = axes
         frds = step_files(case)
-        times = f["steps/time"][:]
+        times = results.times
         for row, style in zip(rows, ["-", "--"]):
             if int(steps[row]) not in frds:
                 continue
@@ -83,7 +84,7 @@ def main():
 
         disp_ax = thick_ax.twinx()
         for row, style in zip(rows, ["-", "--"]):
-            z, thickness, radial = film_profile(f, film, schedule, row)
+            z, thickness, radial = film_profile(results, film, schedule, row)
             label = f"step {steps[row]}"
             thick_ax.plot(1e3 * z, 1e6 * thickness, "C0" + style, label=f"film, {label}")
             disp_ax.plot(1e3 * z, 1e6 * radial, "C3" + style, label=f"wire u_r, {label}")
@@ -96,7 +97,7 @@ def main():
 
         shear_ax = load_ax.twinx()
         for row, style in zip(rows, ["-", "--"]):
-            z, pressure, shear = loads_profile(f, row)
+            z, pressure, shear = loads_profile(results, row)
             load_ax.plot(1e3 * z, 1e-6 * pressure, "C0" + style, label=f"pressure, step {steps[row]}")
             shear_ax.plot(1e3 * z, 1e-6 * shear, "C2" + style, label=f"wire shear, step {steps[row]}")
         load_ax.set(xlabel="z along the die [mm]", ylabel="pressure [MPa]",
@@ -105,11 +106,9 @@ def main():
         load_ax.legend(loc="upper left", fontsize=8)
         shear_ax.legend(loc="lower right", fontsize=8)
 
-        offsets, counts = f["residuals/offset"][:], f["residuals/count"][:]
-        norms = f["residuals/norms"][:]
-        for row in range(max(0, len(steps) - 5), len(steps)):
-            values = norms[offsets[row]:offsets[row] + counts[row]]
-            residual_ax.semilogy(range(1, len(values) + 1), values, "o-", label=f"step {steps[row]}")
+        histories = results.residual_histories()[:len(steps)]
+        for step, values, _ in histories[-5:]:
+            residual_ax.semilogy(range(1, len(values) + 1), values, "o-", label=f"step {step}")
         residual_ax.axhline(1e-8, color="k", lw=0.8, ls=":", label="tolerance 0.01 µm")
         residual_ax.set(xlabel="coupling iteration", ylabel="‖r‖₂ [m]",
                         title="coupling residuals of the last 5 time steps")

@@ -23,10 +23,12 @@ the ccx on PATH (Debian's; the probe needs no restart, so either will do).
 """
 import argparse
 import math
-import os
 import pathlib
 import re
 import subprocess
+
+from cocopp import calculix
+from cocopp.executable import patched_ccx
 
 HERE = pathlib.Path(__file__).resolve().parent
 WALL = HERE.parents[0] / "tube" / "flow_calculix" / "structure"
@@ -39,38 +41,9 @@ FACES = {"CAX8": ("S4", {4: 1 / 6, 1: 1 / 6, 8: 2 / 3}),
                           20: 1 / 3, 16: 1 / 3, 17: 1 / 3, 12: 1 / 3})}
 
 
-def read_nodes(text):
-    block = re.search(r"\*NODE[^\n]*\n(.*?)\n\*", text, re.S).group(1)
-    return {int(a[0]): [float(v) for v in a[1:4]]
-            for a in (line.split(",") for line in block.splitlines())}
-
-
-def read_elements(text):
-    """Element id -> node ids; a data line ending in a comma continues on the next."""
-    elements, card, ids = {}, False, []
-    for line in text.splitlines():
-        if line.startswith("*"):
-            card = line.upper().startswith("*ELEMENT")
-            continue
-        if card and line.strip():
-            ids += [int(v) for v in line.replace(",", " ").split()]
-            if not line.rstrip().endswith(","):
-                elements[ids[0]], ids = ids[1:], []
-    return elements
-
-
 def node_block(path, title):
-    """{node: first value} of the last *NODE PRINT block whose header starts with `title`
-    (ccx marks values in a transformed system with an L, dropped here)."""
-    block = {}
-    for line in path.read_text().splitlines():
-        if line.startswith(" " + title):
-            block = {}
-            continue
-        fields = [v for v in line.split() if v != "L"]
-        if len(fields) == 4 and fields[0].isdigit():
-            block[int(fields[0])] = float(fields[1])
-    return block
+    """{node: first value} of the last *NODE PRINT block whose header starts with `title`."""
+    return {int(row[0]): row[1] for row in calculix.dat_block(path, title)}
 
 
 def run(ccx, work, job, text):
@@ -83,12 +56,12 @@ def run(ccx, work, job, text):
 def probe(ccx, deck, element, work):
     text = (WALL / deck).read_text()
     model = text.split("*STEP")[0]
-    nodes = read_nodes(text)
+    nodes = calculix.deck_nodes(text)
     radius = lambda n: math.hypot(nodes[n][0], nodes[n][2] if element == "CAX8" else nodes[n][1])
     face, weights = FACES[element]
     # The consistent nodal force of the pressure on the inner faces (r is constant there).
     expected = {}
-    for ids in read_elements(text).values():
+    for ids in calculix.deck_elements(text).values():
         corners = [ids[k - 1] for k in weights if k <= 8]
         width = max(abs(nodes[a][1 if element == "CAX8" else 2] - nodes[b][1 if element ==
                     "CAX8" else 2]) for a in corners for b in corners)
@@ -123,7 +96,8 @@ def op_new_drops_model_boundaries(ccx, work):
     *BOUNDARY (the wall's clamped ends): then an end node moves in the second step."""
     text = (WALL / "wall_cax.inp").read_text()
     ends = [int(v) for v in re.findall(r"\d+", text.split("NSET=ENDS")[1].split("*")[0])]
-    inner = sorted(n for n, xyz in read_nodes(text).items() if abs(xyz[0] - 0.005) < 1e-12)
+    inner = sorted(n for n, xyz in calculix.deck_nodes(text).items()
+                   if abs(xyz[0] - 0.005) < 1e-12)
     free = [n for n in inner if n not in ends]
     step = "*STEP\n*STATIC\n*BOUNDARY{}\n{}, 1, 1, 1e-6\n*NODE PRINT, NSET=ENDS\nU\n*END STEP\n"
     run(ccx, work, "op_new", text.split("*STEP")[0] + step.format("", free[0]) +
@@ -133,8 +107,7 @@ def op_new_drops_model_boundaries(ccx, work):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    deps = pathlib.Path(os.environ.get("COCOPP_DEPS_DIR", HERE.parents[1] / "build-deps"))
-    patched = deps / "calculix/bin/ccx"
+    patched = patched_ccx()
     parser.add_argument("--ccx", default=str(patched) if patched.is_file() else "ccx")
     args = parser.parse_args()
     exact = True

@@ -4,9 +4,10 @@ and the message of a run that stopped.
 
     stability.py [results/stability]
 """
-import json
 import pathlib
 import sys
+
+from cocopp.results import read_summary, results_path
 
 HERE = pathlib.Path(__file__).resolve().parent
 
@@ -15,9 +16,11 @@ def main():
     folder = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else HERE / "results" / "stability")
     rows = ["| variant | status | steps | iterations per step (max) | wall time | message |",
             "|---|---|---|---|---|---|"]
-    for summary_file in sorted(folder.glob("*/results/case.summary.json")):
-        s = json.loads(summary_file.read_text())
-        name = summary_file.parent.parent.name
+    for case_file in sorted(folder.glob("*/case.yaml")):
+        s = read_summary(results_path(case_file), missing_ok=True)
+        if not s:
+            continue  # not run, or still running
+        name = case_file.parent.name
         per_step = s.get("iterations_per_step", [])
         iterations = (f"{sum(per_step) / len(per_step):.2f} ({max(per_step)})" if per_step else "-")
         message = (s.get("message") or "").splitlines()

@@ -10,11 +10,9 @@ the wall time. --phases gives the last step of each phase but the last (default 
 the paper's 10 held steps, then its closing steps in groups of 20).
 """
 import argparse
-import os
 import pathlib
 
-os.environ.setdefault("HDF5_USE_FILE_LOCKING", "FALSE")  # a run still writing may be timed
-import h5py  # noqa: E402
+from cocopp.results import ResultsFile, results_path
 
 HERE = pathlib.Path(__file__).resolve().parent
 
@@ -29,12 +27,9 @@ def phase_bounds(steps, ends):
 
 
 def rows(results, ends):
-    steps = results["steps/step"][:]
-    iterations = results["steps/iterations"][:]
-    wall = results["steps/wall_time"][:]
-    coupler = results["steps/coupler_time"][:]
-    solvers = results["steps/solver_times"][:]
-    names = [str(n) for n in results.attrs["solver_names"]]
+    steps, iterations = results.steps, results.iterations
+    wall, coupler, solvers = results.wall_time, results.coupler_time, results.solver_times
+    names = results.solver_names
     header = (["steps", "iterations per step", "wall time"] +
               [f"{n} per iteration" for n in names] + ["coupler per iteration"])
     table = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
@@ -63,11 +58,11 @@ def main():
     parser.add_argument("--phases", type=int, nargs="*", default=None, metavar="STEP",
                         help="last step of each phase but the last (default: 10 30 50 70)")
     args = parser.parse_args()
-    path = pathlib.Path(args.case) / "results" / "case.h5"
+    path = results_path(pathlib.Path(args.case) / "case.yaml")
     if not path.exists():
         raise SystemExit(f"timing.py: no results file {path} (run run.sh first)")
-    with h5py.File(path, "r") as results:
-        if results["steps/step"].shape[0] == 0:
+    with ResultsFile(path, live=True) as results:  # a run still writing may be timed
+        if len(results.steps) == 0:
             raise SystemExit(f"timing.py: {path} holds no time step")
         print("\n".join(rows(results, args.phases if args.phases is not None else [10, 30, 50, 70])))
 

@@ -21,13 +21,14 @@ CASE_DIR/results/wire_response.json. ccx: the patched one scripts/install-calcul
 """
 import argparse
 import json
-import os
 import pathlib
 import shutil
 
 import numpy as np
 
-from wire_results import dat_block, restart_ccx
+from cocopp.calculix import dat_block
+from cocopp.executable import patched_ccx
+from wire_results import restart_ccx
 
 HERE = pathlib.Path(__file__).resolve().parent
 
@@ -70,8 +71,7 @@ def main():
                         help="load scale about which to probe (default 0.7: the last iteration's "
                              "loads of a stalled step may be more than the wire can carry)")
     parser.add_argument("--eps", type=float, default=1e-4, help="load scale increment")
-    deps = pathlib.Path(os.environ.get("COCOPP_DEPS_DIR", HERE.parents[1] / "build-deps"))
-    parser.add_argument("--ccx", default=str(deps / "calculix/bin/ccx"))
+    parser.add_argument("--ccx", default=str(patched_ccx()))
     args = parser.parse_args()
     structure = pathlib.Path(args.case) / "structure"
     if not (structure / "cocopp_converged.rout").exists():

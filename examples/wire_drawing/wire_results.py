@@ -1,6 +1,7 @@
-"""A wire drawing run's results, for plot.py, checks.py and the probes of the wire: the film side from the coupler's
-results file (results/case.h5) and the wire from CalculiX's .frd files (the calculix wrapper
-keeps one per time step in structure/results/step_NNNNN.frd).
+"""A wire drawing run's results, for plot.py, checks.py and the probes of the wire: the film side
+from the coupler's results file (results/case.h5, a cocopp.results.ResultsFile) and the wire
+from CalculiX's .frd files (cocopp.calculix.Frd; the calculix wrapper keeps one per time step in
+structure/results/step_NNNNN.frd).
 
 ccx writes an axisymmetric model's results on the 2D nodes: x is the radius, y the axis and z
 the hoop direction; stresses are extrapolated from the integration points to the nodes.
@@ -14,66 +15,7 @@ import numpy as np
 import yaml
 
 import make_case
-
-
-class Frd:
-    """The node coordinates and the last result block of each name (DISP, STRESS, PE, FORC) of
-    one .frd file; `values(name)` is indexed like `ids` and `coordinates`."""
-
-    def __init__(self, path, names=None):
-        """Read `path`; `names` (e.g. {"FORC"}) limits the result blocks read, for speed."""
-        self.path = pathlib.Path(path)
-        nodes, blocks = {}, {}
-        with open(self.path) as f:
-            lines = iter(f)
-            for line in lines:
-                if line.startswith("    2C"):
-                    for line in lines:
-                        if line.startswith(" -3"):
-                            break
-                        nodes[int(line[3:13])] = [float(line[13 + 12 * k:25 + 12 * k])
-                                                  for k in range(3)]
-                elif line.startswith(" -4"):
-                    name = line[5:13].strip()
-                    wanted = names is None or name in names
-                    rows = {}
-                    for line in lines:
-                        if line.startswith(" -3"):
-                            break
-                        if wanted and line.startswith(" -1"):
-                            count = (len(line.rstrip("\n")) - 13) // 12
-                            rows[int(line[3:13])] = [float(line[13 + 12 * k:25 + 12 * k])
-                                                     for k in range(count)]
-                    if wanted:
-                        blocks[name] = rows
-        if not nodes:
-            raise ValueError(f"{self.path}: no node coordinates (is it a CalculiX .frd file?)")
-        self.ids = np.array(sorted(nodes))
-        self.coordinates = np.array([nodes[i] for i in self.ids])
-        self._blocks = blocks
-
-    def values(self, name):
-        if name not in self._blocks:
-            raise KeyError(f"{self.path}: no {name} block (request it in *NODE FILE or *EL FILE)")
-        rows = self._blocks[name]
-        width = len(next(iter(rows.values())))
-        return np.array([rows.get(i, [np.nan] * width) for i in self.ids])
-
-
-def dat_block(path, title):
-    """Rows of the last block in a ccx .dat file whose header starts with `title` (e.g.
-    "stresses" for an *EL PRINT of S): one list of numbers per line, element and integration
-    point first. None if the file has no such block."""
-    block, inside = None, False
-    with open(path) as f:
-        for line in f:
-            if line.startswith(" " + title):
-                block, inside = [], True
-            elif inside and line.strip():
-                block.append([float(v) for v in line.split()])
-            elif inside and block:
-                inside = False
-    return block
+from cocopp.calculix import dat_block, deck_elements
 
 
 def integration_point_check(dat_path, wire):
@@ -145,14 +87,14 @@ def die_displacement(schedule, t):
     return float(np.interp(t, times, values))
 
 
-def film_profile(f, film, schedule, row):
+def film_profile(results, film, schedule, row):
     """(z, film thickness, wire radial displacement) along the film's wall points at `row`."""
-    points = f["x/wire_points/coordinates"][:]
-    u = f["x/wire_points/displacement"][row]
+    points = results.coordinates("x", "wire_points")
+    u = results.values("x", "wire_points", "displacement", row)
     radius = np.hypot(points[:, 0], points[:, 1])
     radial = (points[:, 0] * u[:, 0] + points[:, 1] * u[:, 1]) / radius
     z = points[:, 2]
-    t = f["steps/time"][row]
+    t = results.times[row]
     die = np.array([film.die_radius(zi) for zi in z]) + die_displacement(schedule, t)
     thickness = die - (film.radius + radial)
     order = np.argsort(z)
@@ -161,11 +103,11 @@ def film_profile(f, film, schedule, row):
     return z[keep], thickness[keep], radial[keep]
 
 
-def loads_profile(f, row):
-    centres = f["y/wire_faces/coordinates"][:]
+def loads_profile(results, row):
+    centres = results.coordinates("y", "wire_faces")
     order = np.argsort(centres[:, 2])
-    pressure = f["y/wire_faces/pressure"][row][:, 0]
-    shear = f["y/wire_faces/traction"][row][:, 2]
+    pressure = results.values("y", "wire_faces", "pressure", row)[:, 0]
+    shear = results.values("y", "wire_faces", "traction", row)[:, 2]
     return centres[order, 2], pressure[order], shear[order]
 
 
@@ -180,13 +122,13 @@ def face_lengths(z):
     return lengths
 
 
-def film_forces(f, film, schedule, row):
+def film_forces(results, film, schedule, row):
     """The film's load on the wire at `row`, over the whole circumference: (axial force of the
     shear, axial force of the pressure on the sloped wire surface, integral of the pressure, its
     radial part (inwards), integral of the shear magnitude). The wire surface's slope comes from its
     radial displacement at the film's wall points."""
-    z, pressure, shear = loads_profile(f, row)
-    wall_z, _, radial = film_profile(f, film, schedule, row)
+    z, pressure, shear = loads_profile(results, row)
+    wall_z, _, radial = film_profile(results, film, schedule, row)
     r = film.radius + np.interp(z, wall_z, radial)
     slope = np.interp(z, wall_z, np.gradient(film.radius + radial, wall_z))
     area = 2 * np.pi * r * face_lengths(z)  # projected on the axis
@@ -205,20 +147,6 @@ def made_with(case, parameters, changes=()):
         data = yaml.safe_load(record.read_text())
         return data["parameters"], data["refine"]
     return make_case.load_parameters(parameters, list(changes)), False
-
-
-def deck_elements(deck):
-    """Element id -> node ids of a ccx deck's *ELEMENT cards (one line per element)."""
-    elements, inside = {}, False
-    with open(deck) as f:
-        for line in f:
-            if line.startswith("*"):
-                inside = line.upper().startswith("*ELEMENT")
-                continue
-            if inside and line.strip():
-                ids = [int(v) for v in line.replace(",", " ").split()]
-                elements[ids[0]] = ids[1:]
-    return elements
 
 
 def restart_ccx(structure, work, ccx):
@@ -290,7 +218,7 @@ def wire_forces(case, frd):
     *CLOAD (the shear, whole ring), and the integral of the pressure over the moved faces."""
     structure = pathlib.Path(case) / "structure"
     pressures, forces = applied_loads(structure / "cocopp_loads.inp")
-    elements = deck_elements(structure / "wire.inp")
+    elements = deck_elements((structure / "wire.inp").read_text())
     moved = dict(zip(frd.ids, frd.coordinates[:, :2] + frd.values("DISP")[:, :2]))  # (r, z)
     axial, total = 0.0, 0.0
     for element, p in pressures.items():

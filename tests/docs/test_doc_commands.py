@@ -5,8 +5,9 @@
    blocks, and `$ ` lines of text blocks) is listed in tests/docs/doc_commands.yaml with how CI
    proves it, and every entry there is still shown somewhere;
 2. the entries marked `run: true` are run as shown, in order, from the root of a copy of the
-   checkout (README, docs, examples and scripts; `build` is the build tree), with the build's
-   cocopp first on PATH; each must succeed;
+   checkout (README, docs, examples, scripts and the package python/; `build` is the build
+   tree), with the build's cocopp first on PATH and the copy's python/ on PYTHONPATH (where
+   scripts/build.sh's .pth file puts a checkout's); each must succeed;
 3. the sample outputs in the docs match the fresh runs: README's progress lines (iterations
    exactly, residuals within 1 %) and summary, and docs/bench.md's table (status, steps and
    iteration counts exactly, errors within 5 %; times are the machine's).
@@ -179,8 +180,9 @@ def main():
     env["PATH"] = f"{bin_dir}:/usr/bin:/bin:{env.get('PATH', '')}"
     outputs = {}
     with tempfile.TemporaryDirectory(prefix="cocopp-doc-commands-") as checkout:
+        env["PYTHONPATH"] = os.path.join(checkout, "python")
         for path in tracked_files(source, ("README.md", "bench", "docs", "examples", "scripts",
-                                           "solvers/sdk")):  # the Python SDK
+                                           "python", "solvers/sdk")):  # the Python SDK
             os.makedirs(os.path.join(checkout, os.path.dirname(path)), exist_ok=True)
             shutil.copy2(os.path.join(source, path), os.path.join(checkout, path))
         os.symlink(os.path.dirname(bin_dir), os.path.join(checkout, "build"))

@@ -71,6 +71,9 @@ def main():
         version = run(["/usr/bin/python3", "-c",
                        "import cocopp_sdk; print(cocopp_sdk.PROTOCOL_VERSION)"], env=env)
         check(version.strip() == "1", "the packaged Python SDK imports")
+        imported = run(["/usr/bin/python3", "-c", "import cocopp.results, cocopp.case; "
+                        "print(cocopp.results.__file__)"], env=env)
+        check(imported.strip().startswith(prefix), "the packaged package cocopp imports")
     print("debian_package: all checks passed")
 
 

@@ -82,6 +82,8 @@ def main():
                      "share/cocopp/plot_results.py", "lib/libcocopp_sdk.a",
                      "lib/cmake/cocopp/cocoppConfig.cmake", "lib/pkgconfig/cocopp-sdk.pc",
                      "lib/python3/dist-packages/cocopp_sdk.py",
+                     "lib/python3/dist-packages/cocopp/results.py",
+                     "lib/python3/dist-packages/cocopp/plot/bench.py",
                      "include/cocopp/solvers/sdk/solver_sdk.hpp"]:
             check(os.path.isfile(os.path.join(prefix, part)), f"installed {part}")
         check("cocopp" in run([cocopp, "--help"], env=env), "the moved cocopp runs")
@@ -117,6 +119,14 @@ def main():
         shutil.copytree(os.path.join(examples, "tube", "flow_ringmodel"), reference)
         run([cocopp, "run", "case.yaml"], cwd=reference, env=env)
         reference_h5 = os.path.join(reference, "results", "case.h5")
+        # The installed plot script finds the installed package beside it, without PYTHONPATH
+        # (as cocopp bench runs plot_bench.py) and without a checkout's (a HOME of its own: no
+        # .pth file of scripts/build.sh).
+        bare = {k: v for k, v in env.items() if k != "PYTHONPATH"}
+        plotted = run(["/usr/bin/python3", os.path.join(prefix, "share/cocopp/plot_results.py"),
+                       reference_h5], env=dict(bare, HOME=scratch))
+        check(f"wrote {reference_h5[:-3]}.png" in plotted,
+              "the installed plot_results.py draws with the installed package")
 
         # The solver project outside the tree, built with CMake's find_package(cocopp).
         project = os.path.join(scratch, "external_solver")

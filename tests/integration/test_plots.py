@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The figures (scripts/cocopp_plot, plot_results.py, plot_bench.py) and `cocopp bench
+"""The figures (cocopp.plot in python/cocopp, plot_results.py, plot_bench.py) and `cocopp bench
 --quiet`, ctest `plots`: on a tube run with a watchpoint, each figure holds the numbers of the
 results file it was drawn from (residuals as the criterion measures them and its tolerance,
 iterations per step, the history at a point, the space-time map, the animation's frames), and
@@ -44,8 +44,9 @@ def tube_run(bin_dir, source, scratch, name, criterion):
 
 def main():
     bin_dir, source = sys.argv[1], sys.argv[2]
-    sys.path.insert(0, os.path.join(source, "scripts"))
-    from cocopp_plot import ResultsFile, bench, history, interface, residuals
+    sys.path.insert(0, os.path.join(source, "python"))
+    from cocopp.plot import bench, interface, residuals
+    from cocopp.results import ResultsFile, read_bench
 
     with tempfile.TemporaryDirectory(prefix="cocopp-plots-") as scratch:
         relative = tube_run(bin_dir, source, scratch, "relative", """  convergence_criterion:
@@ -80,12 +81,12 @@ def main():
                   f"a bar per step with its iterations ({sum(heights)} in all)")
             plt.close(figure)
 
-            series, where = history.watchpoint_series(results, "mid")
+            series, where = results.watchpoint_series("mid")
             watched = results.file["watchpoints/mid/pressure"][:, 0, 0]
             check(np.array_equal(series["pressure"][1][:, 0], watched)
                   and np.allclose(where, [0, 0.005, 0.00025]),
                   "the watchpoint's history is its values in the file")
-            nearest, at = history.nearest_point_series(results, [0, 0.005, 0.00025])
+            nearest, at = results.nearest_point_series([0, 0.005, 0.00025])
             check(np.array_equal(nearest["pressure"][1][:, 0],
                                  results.file["y/wall/pressure"][:, 50, 0])
                   and np.allclose(at, [0, 0.005, 0.00025]),
@@ -139,7 +140,7 @@ def main():
         check(len(run_lines) == 7 and "cocopp 0.1.0: case" not in quiet
               and "diverged after 0 steps" in run_lines[-1],
               "bench --quiet: one line per run, no run headers")
-        report = bench.load(os.path.join(tube, "bench", "results", "bench", "bench.json"))
+        report = read_bench(os.path.join(tube, "bench", "results", "bench"))
         check(all(r["solver_time"] > 0 for r in report["runs"] if r["steps_completed"] > 0),
               "bench.json has each run's solver time")
         figure = bench.plot_bench(report, os.path.join(scratch, "bench.png"))

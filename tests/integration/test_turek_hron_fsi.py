@@ -107,10 +107,10 @@ def test_fsi3(bin_dir, source):
         case, table = coupled_run(bin_dir, source, scratch, "fsi3", "--dt", "0.002",
                                   "--end-time", "0.1", "--cores", "2")
         check(os.path.isdir(os.path.join(case, "fluid/processor1")), "the fluid was not decomposed")
-        import h5py
-        with h5py.File(os.path.join(case, "results/case.h5"), "r") as f:
-            check(f.attrs["status"] == "completed", f"status {f.attrs['status']}")
-            iterations = f["steps/iterations"][:]
+        from cocopp.results import ResultsFile, results_path
+        with ResultsFile(results_path(os.path.join(case, "case.yaml"))) as results:
+            check(results.status == "completed", f"status {results.status}")
+            iterations = results.iterations
         check(len(iterations) == 50 and iterations.max() <= 4, f"iterations {list(iterations)}")
         sys.path.insert(0, example(source, ""))
         from post import read_forces

@@ -6,9 +6,9 @@ Two references: equivalent_tube/ (the tube structure with the thick wall's Lame 
 the trapezoidal rule ccx uses; the one that should agree) and examples/tube/flow_structure (the
 thin-ring tube structure with backward Euler). The runs must be done first:
 
-  build/bin/cocopp run examples/tube/flow_calculix/case.yaml
-  build/bin/cocopp run examples/tube/flow_calculix/equivalent_tube/case.yaml
-  build/bin/cocopp run examples/tube/flow_structure/case.yaml
+  cocopp run examples/tube/flow_calculix/case.yaml
+  cocopp run examples/tube/flow_calculix/equivalent_tube/case.yaml
+  cocopp run examples/tube/flow_structure/case.yaml
   /usr/bin/python3 examples/tube/flow_calculix/compare.py [-o results/tube-flow-calculix.png]
 
 If case_axisymmetric.yaml (the same wall as CAX8 elements) has run too, its difference from the
@@ -17,27 +17,27 @@ sector is printed.
 import argparse
 import os
 
-import h5py
 import matplotlib
 import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+from cocopp.results import ResultsFile, results_path  # noqa: E402
+
 HERE = os.path.dirname(os.path.abspath(__file__))
-RUNS = [("CalculiX sector", "-", os.path.join(HERE, "results", "case.h5")),
-        ("equivalent tube structure", "--",
-         os.path.join(HERE, "equivalent_tube", "results", "case.h5")),
+RUNS = [("CalculiX sector", "-", os.path.join(HERE, "case.yaml")),
+        ("equivalent tube structure", "--", os.path.join(HERE, "equivalent_tube", "case.yaml")),
         ("thin-ring tube structure (flow_structure)", ":",
-         os.path.join(HERE, "..", "flow_structure", "results", "case.h5"))]
+         os.path.join(HERE, "..", "flow_structure", "case.yaml"))]
 
 
-def load(path):
-    with h5py.File(path, "r") as f:
-        time = f["steps/time"][:]
-        z = f["x/wall/coordinates"][:, 2]
-        radial = f["x/wall/displacement"][:, :, 1]  # the flow's points: radial = y
-    return time, z, radial
+def load(case_file):
+    """Time, z of the wall's points and their radial displacement, from a run of `case_file`."""
+    with ResultsFile(results_path(case_file)) as results:
+        z = results.coordinates("x", "wall")[:, 2]
+        radial = results.values("x", "wall", "displacement")[:, :, 1]  # flow's points: radial = y
+        return results.times, z, radial
 
 
 def main():
@@ -78,8 +78,8 @@ def main():
         print("  %s: peak %.3g m, RMS difference / RMS of it: %.3f"
               % (label, np.abs(radial).max(),
                  np.sqrt(np.mean((calculix - radial) ** 2) / np.mean(radial ** 2))))
-    axisymmetric = os.path.join(HERE, "results", "case_axisymmetric.h5")
-    if os.path.exists(axisymmetric):
+    axisymmetric = os.path.join(HERE, "case_axisymmetric.yaml")
+    if results_path(axisymmetric).exists():
         radial = load(axisymmetric)[2][:steps]
         print("  CalculiX CAX8 (case_axisymmetric): peak %.4g m, largest difference from the "
               "sector / peak: %.1e" % (np.abs(radial).max(),

@@ -9,18 +9,19 @@ differ by more than 10 %.
 import argparse
 import sys
 
-import h5py
 import numpy as np
+
+from cocopp.results import ResultsFile
 
 
 def mid_tube_pressure(results_file):
     """Time and the pressure at z = 0 (linear between the two nearest points), from the fluid's
     output model part (the only one in y)."""
-    with h5py.File(results_file, "r") as f:
-        part = next(iter(f["y"].values()))
-        z = part["coordinates"][:, 2]
-        pressure = part["pressure"][:, :, 0]
-        time = f["steps/time"][:]
+    with ResultsFile(results_file) as results:
+        part = results.model_parts("y")[0]
+        z = results.coordinates("y", part)[:, 2]
+        pressure = results.values("y", part, "pressure")[:, :, 0]
+        time = results.times
     order = np.argsort(z)
     at_mid = np.array([np.interp(0.0, z[order], row[order]) for row in pressure])
     return np.concatenate([[0.0], time]), np.concatenate([[0.0], at_mid])

@@ -5,8 +5,7 @@ CSM1, CSM2: u(A) after the step; CSM3: mean, amplitude and frequency of u_y(A) o
 periods (from its maxima; u_x's mean and amplitude between the same times)."""
 import sys
 
-import h5py
-import numpy as np
+from cocopp.results import ResultsFile
 
 REFERENCE = {"csm1": {"ux": -7.187e-3, "uy": -66.10e-3},
              "csm2": {"ux": -0.4690e-3, "uy": -16.97e-3},
@@ -16,10 +15,9 @@ REFERENCE = {"csm1": {"ux": -7.187e-3, "uy": -66.10e-3},
 
 def tip_history(path):
     """u(A) per step: the partner's last point (x = 0.6) takes the tip's displacement."""
-    with h5py.File(path, "r") as results:
-        displacement = results["x/flag_top/displacement"][:]
-        times = results["steps/time"][:]
-    return times, displacement[:, -1, 0], displacement[:, -1, 1]
+    with ResultsFile(path) as results:
+        displacement = results.values("x", "flag_top", "displacement")
+        return results.times, displacement[:, -1, 0], displacement[:, -1, 1]
 
 
 def maxima(times, values):

@@ -9,31 +9,25 @@ last --steps time steps, one after the other, on a log scale, with the runs' tol
 that stopped inside a step (diverged) ends with that step's residuals, dotted.
 """
 import argparse
-import json
 import pathlib
 
-import h5py
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+from cocopp.results import (ResultsFile, bench_run_directory, read_bench,  # noqa: E402
+                            results_path)
+
 
 def last_steps(results, steps):
     """[(step, norms)] of the last `steps` steps of a results file, then the step the run
     stopped in, if it stopped inside one (a divergence), and the tolerance."""
-    with h5py.File(results, "r", locking=False) as f:
-        numbers = f["steps/step"][:]
-        offset, count = f["residuals/offset"][:], f["residuals/count"][:]
-        norms = f["residuals/norms"][:]
-        tolerance = f.attrs["tolerance"][0] if len(f.attrs["tolerance"]) else None
-        stopped = None
-        if "unfinished_step" in f:
-            group = f["unfinished_step"]
-            stopped = (int(group.attrs["step"]), group["residual_norms"][:])
-    rows = range(len(numbers) - steps, len(numbers))
-    history = [(int(numbers[r]), norms[offset[r]:offset[r] + count[r]]) for r in rows]
-    return history, stopped, tolerance
+    with ResultsFile(results, live=True) as run:
+        histories = run.residual_histories()
+        tolerance = run.tolerance()
+        history = [(step, norms) for step, norms, _ in histories[len(histories) - steps:]]
+        return history, run.unfinished_step(), tolerance[2] if tolerance else None
 
 
 def main():
@@ -42,7 +36,7 @@ def main():
     parser.add_argument("--steps", type=int, default=3)
     parser.add_argument("-o", "--output", type=pathlib.Path)
     args = parser.parse_args()
-    runs = json.loads((args.bench / "bench.json").read_text())["runs"]
+    runs = read_bench(args.bench)["runs"]
     figure, axis = plt.subplots(figsize=(9, 4.5))
     tolerance = None
     for run in runs:
@@ -51,7 +45,7 @@ def main():
         # Only the run's own steps: a run continuing a saved state holds the base run's too.
         own = min(args.steps, run["steps_completed"] or 0)
         history, stopped, run_tolerance = last_steps(
-            args.bench / run["name"] / "results/case.h5", own)
+            results_path(bench_run_directory(args.bench, run) / "case.yaml"), own)
         tolerance = tolerance or run_tolerance
         if stopped:
             history.append(stopped)

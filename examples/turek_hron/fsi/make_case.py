@@ -5,7 +5,8 @@
                  [--tolerance 1e-7] [--alpha -0.1] [--pressure-rel-tol 0] [--cores 1]
 
 OUTPUT/fluid: the channel as an OpenFOAM case for cocoppPimpleFoam (make_mesh.py's blockMeshDict,
-its Allmesh runs blockMesh); OUTPUT/flag/flag.inp: the flag in CalculiX (../csm/make_flag.py);
+its Allmesh runs blockMesh); OUTPUT/flag/flag.inp: the flag in CalculiX (the CSM tests' flag,
+cocopp.turek_hron, as ../csm/make_flag.py writes it);
 OUTPUT/case.yaml: the coupled case (IQN-ILS with reuse). The benchmark of S. Turek and J. Hron,
 "Proposal for numerical benchmarking of fluid-structure interaction between an elastic object
 and laminar incompressible flow", in: Fluid-Structure Interaction, LNCSE 53, Springer 2006,
@@ -22,10 +23,9 @@ import math
 import pathlib
 import sys
 
-HERE = pathlib.Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parent / "csm"))
-import make_flag  # noqa: E402  (the flag's deck, shared with the CSM tests)
-import make_mesh  # noqa: E402
+import make_mesh
+from cocopp import case, openfoam, turek_hron
+from cocopp.openfoam import header
 
 RHO_FLUID, NU_FLUID = 1000.0, 1.0e-3
 MEAN_INFLOW = {"fsi1": 0.2, "fsi2": 1.0, "fsi3": 2.0, "cfd3": 2.0}
@@ -38,11 +38,6 @@ DEFAULT_END = {"fsi1": 10.0, "fsi2": 15.0, "fsi3": 10.0, "cfd3": 20.0}
 
 
 ENDTIME_MARGIN = 1000.0  # s beyond the run's end (controlDict's endTime)
-
-
-def header(cls, name):
-    return (f"FoamFile\n{{\n    version     2.0;\n    format      ascii;\n    class       {cls};\n"
-            f"    object      {name};\n}}\n\n")
 
 
 def inflow(y, mean, ramp):
@@ -206,71 +201,57 @@ pimpleFoam > log.pimpleFoam 2>&1 || { echo "Allrun: pimpleFoam failed, see $PWD/
 """
 
 
-CASE = """\
-# Turek-Hron {upper} (docs/validation-turek-hron.md), written by make_case.py:
-#   {command}
-# fluid/: the channel in OpenFOAM (level {level}, {cells} cells); flag/: the flag in CalculiX.
-settings:
-  delta_t: {dt}
-  number_of_timesteps: {steps}
-  state_interval: {state_interval}      # a state to restart from (cocopp run --restart)
-coupled_solver:
-  type: iqni
-  omega: 0.05                    # relaxation of the first step's first update
-  model:
-    type: ls                     # IQN-ILS ...
-    q: {q}                         # ... reusing the secant information of earlier steps
-    min_significant: 1.0e-12    # filter of nearly dependent secant columns: relative 1e-3,
-    min_significant_relative: 1.0e-3   # else FSI3's reused columns overshoot (docs)
-  predictor:
-    type: linear
-  convergence_criterion:
-    type: or
-    criteria:
-      - type: absolute_norm      # the flag's displacement to {tolerance} m (2-norm)
-        tolerance: {tolerance}
-      - type: iteration_limit
-        maximum: 30
-solver_wrappers:
-  - type: openfoam               # F: the flag's displacement -> the flow's loads on it
-    name: fluid
-    working_directory: fluid
-    boundary_names: [flag]
-    timeout: 600{cores}
-  - type: mapped                 # S: the loads -> the flag's displacement
-    name: flag
-    solver_wrapper:
-      type: calculix             # persistent (cocopp-ccx) where built
-      working_directory: flag
-      input_file: flag.inp
-      interface_surface: WET     # the three sides in the flow
-      interface_node_set: WETN
-    input_mapper:                # fluid face centres -> the flag's faces, along its outline
-      type: linear
-      directions: [x, y]
-    output_mapper:               # the flag's nodes -> the fluid's flag points: the nodes
-      type: linear               # copied to both planes of the one-cell-thick mesh, then
-      transformers:              # interpolated on that ribbon
-        - {{type: depth_2d_to_3d, direction_depth: z, coordinates: [0, {depth}]}}
-"""
-
-
 def case_file(test, level, dt, steps, q, tolerance, depth, command, cores=1):
-    cores_entry = f"\n    cores: {cores}                     # MPI ranks (system/decomposeParDict)" \
-        if cores > 1 else ""
-    return CASE.format(upper=test.upper(), command=command, level=level, depth=depth,
-                       cores=cores_entry,
-                       cells=make_mesh.cell_count(level), dt=dt, steps=steps,
-                       state_interval=max(1, round(0.5 / dt)), q=q, tolerance=tolerance)
-
-
-def write(root, files):
-    for name, text in files.items():
-        path = root / name
-        path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(text)
-        if name.endswith(("Allmesh", "Allrun")):
-            path.chmod(0o755)
+    """The coupled case (case.yaml): IQN-ILS with reuse, the fluid in OpenFOAM and the flag in
+    CalculiX behind a mapped wrapper."""
+    fluid = {"type": case.commented("openfoam",
+                                    "F: the flag's displacement -> the flow's loads on it"),
+             "name": "fluid", "working_directory": "fluid", "boundary_names": ["flag"],
+             "timeout": 600}
+    if cores > 1:
+        fluid["cores"] = case.commented(cores, "MPI ranks (system/decomposeParDict)")
+    flag = {
+        "type": case.commented("mapped", "S: the loads -> the flag's displacement"),
+        "name": "flag",
+        "solver_wrapper": {
+            "type": case.commented("calculix", "persistent (cocopp-ccx) where built"),
+            "working_directory": "flag", "input_file": "flag.inp",
+            "interface_surface": case.commented("WET", "the three sides in the flow"),
+            "interface_node_set": "WETN"},
+        "input_mapper": case.commented({"type": "linear", "directions": ["x", "y"]},
+                                       "fluid face centres -> the flag's faces, along its outline"),
+        "output_mapper": case.commented(
+            {"type": "linear", "transformers": [case.flow(
+                {"type": "depth_2d_to_3d", "direction_depth": "z", "coordinates": [0, depth]})]},
+            "the flag's nodes -> the fluid's flag points: the nodes\n"
+            "copied to both planes of the one-cell-thick mesh, then\n"
+            "interpolated on that ribbon")}
+    coupled_solver = {
+        "type": "iqni",
+        "omega": case.commented(0.05, "relaxation of the first step's first update"),
+        "model": {
+            "type": case.commented("ls", "IQN-ILS ..."),
+            "q": case.commented(q, "... reusing the secant information of earlier steps"),
+            "min_significant": case.commented(1.0e-12, "filter of nearly dependent secant columns: "
+                                                       "relative 1e-3,"),
+            "min_significant_relative": case.commented(1.0e-3, "else FSI3's reused columns "
+                                                               "overshoot (docs)")},
+        "predictor": {"type": "linear"},
+        "convergence_criterion": {"type": "or", "criteria": [
+            {"type": case.commented("absolute_norm",
+                                    f"the flag's displacement to {tolerance} m (2-norm)"),
+             "tolerance": tolerance},
+            {"type": "iteration_limit", "maximum": 30}]}}
+    settings = {"delta_t": dt, "number_of_timesteps": steps,
+                "state_interval": case.commented(max(1, round(0.5 / dt)),
+                                                 "a state to restart from (cocopp run --restart)")}
+    header = (f"Turek-Hron {test.upper()} (docs/validation-turek-hron.md), written by "
+              "make_case.py:\n"
+              f"  {command}\n"
+              f"fluid/: the channel in OpenFOAM (level {level}, {make_mesh.cell_count(level)} "
+              "cells); flag/: the flag in CalculiX.")
+    return case.dump({"settings": settings, "coupled_solver": coupled_solver,
+                      "solver_wrappers": [fluid, flag]}, header)
 
 
 def write_made(args, dt, end_time):
@@ -305,8 +286,9 @@ def main():
     end_time = args.end_time or DEFAULT_END[args.test]
     steps = round(end_time / dt)
     command = "make_case.py " + " ".join(sys.argv[1:])
-    write(args.output / "fluid", fluid_files(args.test, args.level, dt, end_time, args.depth,
-                                                 args.pressure_rel_tol, args.cores))
+    openfoam.write_case(args.output / "fluid",
+                        fluid_files(args.test, args.level, dt, end_time, args.depth,
+                                    args.pressure_rel_tol, args.cores))
     if args.test == "cfd3":
         write_made(args, dt, end_time)
         print(f"make_case.py: {args.output}: cfd3 (the fluid alone, fluid/Allrun), level "
@@ -314,7 +296,7 @@ def main():
         return
     (args.output / "flag").mkdir(parents=True, exist_ok=True)
     (args.output / "flag/flag.inp").write_text(
-        make_flag.deck(args.test, 20 * args.level, 2 * args.level, dt, args.alpha))
+        turek_hron.flag_deck(args.test, 20 * args.level, 2 * args.level, dt, args.alpha))
     (args.output / "case.yaml").write_text(
         case_file(args.test, args.level, dt, steps, args.q, args.tolerance, args.depth,
                   command, args.cores))

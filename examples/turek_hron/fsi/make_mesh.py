@@ -15,6 +15,8 @@ three wetted sides), frontAndBack (empty).
 import argparse
 import math
 
+from cocopp import openfoam
+
 CENTRE, RADIUS = (0.2, 0.2), 0.05
 LENGTH, HEIGHT = 2.5, 0.41
 FLAG_END, FLAG_BOTTOM, FLAG_TOP = 0.6, 0.19, 0.21
@@ -125,9 +127,7 @@ def block_mesh_dict(level, depth):
     def back(name):
         return index[name] + count
 
-    lines = ["FoamFile\n{\n    version     2.0;\n    format      ascii;\n    class       dictionary;"
-             "\n    object      blockMeshDict;\n}\n",
-             f"// Turek-Hron FSI channel, level {level}, depth {depth} m (make_mesh.py).",
+    lines = [f"// Turek-Hron FSI channel, level {level}, depth {depth} m (make_mesh.py).",
              "scale 1;", "", "vertices", "("]
     for z in (0.0, depth):
         lines += [f"    ({points2d[name][0]:.15g} {points2d[name][1]:.15g} {z:.15g})  // {name}"
@@ -170,7 +170,7 @@ def block_mesh_dict(level, depth):
                      f"        (\n            " + "\n            ".join(faces) +
                      "\n        );\n    }")
     lines += [");", "", "defaultPatch { name frontAndBack; type empty; }", ""]
-    return "\n".join(lines)
+    return openfoam.header("dictionary", "blockMeshDict") + "\n".join(lines)
 
 
 def cell_count(level):

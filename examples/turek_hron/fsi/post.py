@@ -19,8 +19,9 @@ import pathlib
 import re
 import sys
 
-import h5py
 import numpy as np
+
+from cocopp.results import ResultsFile, results_path
 
 POINT_A = (0.6, 0.2)
 # S. Turek, J. Hron (2006), tables of the FSI tests (displacements in m, forces in N per m of
@@ -57,13 +58,12 @@ def read_forces(fluid, depth):
 
 
 def read_tip(results):
-    with h5py.File(results, "r") as f:
-        coordinates = f["x/flag_points/coordinates"][:]
+    with ResultsFile(results) as run:
+        coordinates = run.coordinates("x", "flag_points")
         nearest = np.argmin(np.hypot(coordinates[:, 0] - POINT_A[0],
                                      coordinates[:, 1] - POINT_A[1]))
-        displacement = f["x/flag_points/displacement"][:, nearest, :]
-        return (f["steps/time"][:], displacement[:, 0], displacement[:, 1],
-                f["steps/iterations"][:])
+        displacement = run.values("x", "flag_points", "displacement")[:, nearest, :]
+        return run.times, displacement[:, 0], displacement[:, 1], run.iterations
 
 
 def crossings(times, values, level):
@@ -170,7 +170,7 @@ def main():
     force_times, drag, lift = read_forces(args.run / "fluid", made["depth"])
     histories = {"drag": (force_times, drag), "lift": (force_times, lift)}
     if coupled:  # the tip too, and the coupling iterations
-        times, ux, uy, iterations = read_tip(args.run / "results/case.h5")
+        times, ux, uy, iterations = read_tip(results_path(args.run / "case.yaml"))
         histories = {"ux": (times, ux), "uy": (times, uy), **histories}
     table = evaluate(test, histories, args.periods)
     print_table(test, table)

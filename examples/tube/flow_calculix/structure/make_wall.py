@@ -24,6 +24,8 @@ trapezoidal rule of the increments (docs/solver-wrappers-calculix.md, "Dynamic s
 import math
 import sys
 
+from cocopp.calculix import Deck
+
 R0, H, LENGTH = 0.005, 0.001, 0.05
 E, NU, RHO = 3.0e5, 0.3, 1200.0
 DELTA_T = 1.0e-4
@@ -36,7 +38,7 @@ LOCAL = [(0, 0, 0), (2, 0, 0), (2, 2, 0), (0, 2, 0), (0, 0, 2), (2, 0, 2), (2, 2
 
 
 def sector_mesh(axial):
-    """Nodes, elements, WALLMID, ENDS and WALL of the 1 degree C3D20 sector."""
+    """A deck of the 1 degree C3D20 sector's nodes, elements, WALLMID, ENDS and WALL."""
     ni, nj, nk = 3, 3, 2 * axial + 1
 
     def node_id(i, j, k):
@@ -45,61 +47,46 @@ def sector_mesh(axial):
     def exists(i, j, k):
         return i % 2 + j % 2 + k % 2 <= 1
 
-    # ccx reads numbers from 20-character fields: 13 significant digits fit.
-    lines = ["** Tube wall of the 1D tube example: %g degree sector of C3D20 (make_wall.py)" % ANGLE,
-             "*NODE, NSET=NALL"]
-    for k in range(nk):
-        z = -LENGTH / 2 + LENGTH * k / (nk - 1)
-        for j in range(nj):
-            theta = math.radians(CENTRE + ANGLE * (j - 1) / 2)
-            for i in range(ni):
-                if exists(i, j, k):
-                    r = R0 + H * i / (ni - 1)
-                    lines.append("%d, %.13g, %.13g, %.13g" % (node_id(i, j, k), r * math.cos(theta),
-                                                              r * math.sin(theta), z))
-    lines.append("*ELEMENT, TYPE=C3D20, ELSET=EALL")
-    for q in range(axial):
-        ids = [node_id(a, b, 2 * q + c) for a, b, c in LOCAL]
-        lines.append("%d, %s," % (q + 1, ", ".join(map(str, ids[:15]))))
-        lines.append(", ".join(map(str, ids[15:])))
-    lines.append("*NSET, NSET=WALLMID")
-    lines += ["%d," % node_id(0, 1, k) for k in range(0, nk, 2)]
-    lines.append("*NSET, NSET=ENDS")
-    lines += ["%d," % node_id(i, j, k) for k in (0, nk - 1) for j in range(nj) for i in range(ni)
-              if exists(i, j, k)]
-    lines.append("*SURFACE, NAME=WALL, TYPE=ELEMENT")  # the bore (radial xi = -1) is face S6
-    lines += ["%d, S6" % (q + 1) for q in range(axial)]
-    lines += ["*TRANSFORM, NSET=NALL, TYPE=C", "0., 0., 0., 0., 0., 1."]
-    return lines
+    deck = Deck("** Tube wall of the 1D tube example: %g degree sector of C3D20 (make_wall.py)"
+                % ANGLE)
+
+    def position(i, j, k):
+        r, theta = R0 + H * i / (ni - 1), math.radians(CENTRE + ANGLE * (j - 1) / 2)
+        return (node_id(i, j, k), r * math.cos(theta), r * math.sin(theta),
+                -LENGTH / 2 + LENGTH * k / (nk - 1))
+
+    deck.nodes(position(i, j, k) for k in range(nk) for j in range(nj) for i in range(ni)
+               if exists(i, j, k))
+    deck.elements("C3D20", ((q + 1, [node_id(a, b, 2 * q + c) for a, b, c in LOCAL])
+                            for q in range(axial)))
+    deck.node_set("WALLMID", [node_id(0, 1, k) for k in range(0, nk, 2)])
+    deck.node_set("ENDS", [node_id(i, j, k) for k in (0, nk - 1) for j in range(nj)
+                           for i in range(ni) if exists(i, j, k)])
+    deck.surface("WALL", [(q + 1, "S6") for q in range(axial)])  # the bore (radial xi = -1)
+    deck.add("*TRANSFORM, NSET=NALL, TYPE=C", "0., 0., 0., 0., 0., 1.")
+    return deck
 
 
 def axisymmetric_mesh(axial):
-    """Nodes, elements, WALLMID, ENDS and WALL of the CAX8 model (x radius, y axis)."""
+    """A deck of the CAX8 model's nodes, elements, WALLMID, ENDS and WALL (x radius, y axis)."""
     ni, nk = 3, 2 * axial + 1
 
     def node_id(i, k):
         return 1 + i + ni * k
 
-    lines = ["** Tube wall of the 1D tube example: axisymmetric CAX8, x = radius, y = axis "
-             "(make_wall.py --axisymmetric)", "*NODE, NSET=NALL"]
-    for k in range(nk):
-        for i in range(ni):
-            if i % 2 + k % 2 <= 1:
-                lines.append("%d, %.13g, %.13g, 0." % (node_id(i, k), R0 + H * i / (ni - 1),
-                                                        -LENGTH / 2 + LENGTH * k / (nk - 1)))
-    lines.append("*ELEMENT, TYPE=CAX8, ELSET=EALL")  # corners counter-clockwise, then mid-sides
-    for q in range(axial):
-        k = 2 * q
-        ids = [node_id(0, k), node_id(2, k), node_id(2, k + 2), node_id(0, k + 2),
-               node_id(1, k), node_id(2, k + 1), node_id(1, k + 2), node_id(0, k + 1)]
-        lines.append("%d, %s" % (q + 1, ", ".join(map(str, ids))))
-    lines.append("*NSET, NSET=WALLMID")
-    lines += ["%d," % node_id(0, k) for k in range(0, nk, 2)]
-    lines.append("*NSET, NSET=ENDS")
-    lines += ["%d," % node_id(i, k) for k in (0, nk - 1) for i in range(ni)]
-    lines.append("*SURFACE, NAME=WALL, TYPE=ELEMENT")  # the bore (nodes 4-1) is edge S4
-    lines += ["%d, S4" % (q + 1) for q in range(axial)]
-    return lines
+    deck = Deck("** Tube wall of the 1D tube example: axisymmetric CAX8, x = radius, y = axis "
+                "(make_wall.py --axisymmetric)")
+    deck.nodes((node_id(i, k), R0 + H * i / (ni - 1), -LENGTH / 2 + LENGTH * k / (nk - 1), "0.")
+               for k in range(nk) for i in range(ni) if i % 2 + k % 2 <= 1)
+    # Corners counter-clockwise, then mid-sides.
+    deck.elements("CAX8", ((q + 1, [node_id(0, 2 * q), node_id(2, 2 * q), node_id(2, 2 * q + 2),
+                                    node_id(0, 2 * q + 2), node_id(1, 2 * q), node_id(2, 2 * q + 1),
+                                    node_id(1, 2 * q + 2), node_id(0, 2 * q + 1)])
+                           for q in range(axial)))
+    deck.node_set("WALLMID", [node_id(0, k) for k in range(0, nk, 2)])
+    deck.node_set("ENDS", [node_id(i, k) for k in (0, nk - 1) for i in range(ni)])
+    deck.surface("WALL", [(q + 1, "S4") for q in range(axial)])  # the bore (nodes 4-1)
+    return deck
 
 
 def main():
@@ -107,18 +94,18 @@ def main():
     axisymmetric = "--axisymmetric" in arguments
     arguments = [a for a in arguments if a != "--axisymmetric"]
     axial = int(arguments[0]) if arguments else 50
-    lines = axisymmetric_mesh(axial) if axisymmetric else sector_mesh(axial)
+    deck = axisymmetric_mesh(axial) if axisymmetric else sector_mesh(axial)
     boundary = (["** ends clamped", "*BOUNDARY", "ENDS, 1, 2"] if axisymmetric else
                 ["** hoop displacement zero everywhere (axisymmetry); ends clamped",
                  "*BOUNDARY", "NALL, 2, 2", "ENDS, 1, 3"])
-    lines += ["*MATERIAL, NAME=WALL", "*ELASTIC", "%g, %g" % (E, NU), "*DENSITY", "%g" % RHO,
-              "*SOLID SECTION, ELSET=EALL, MATERIAL=WALL"] + boundary + [
+    deck.add(*["*MATERIAL, NAME=WALL", "*ELASTIC", "%g, %g" % (E, NU), "*DENSITY", "%g" % RHO,
+               "*SOLID SECTION, ELSET=EALL, MATERIAL=WALL"] + boundary + [
               "** One coupling time step; the coupler's loads are ramped over it (ccx keeps no",
               "** accelerations in its restart file: a step-amplitude load would jump)",
               "*STEP, AMPLITUDE=RAMP", "*DYNAMIC, DIRECT, ALPHA=0", "%g, %g" % (DELTA_T, DELTA_T),
-              "*END STEP"]
+              "*END STEP"])
     with open("wall_cax.inp" if axisymmetric else "wall.inp", "w") as out:
-        out.write("\n".join(lines) + "\n")
+        out.write(deck.text())
 
 
 if __name__ == "__main__":

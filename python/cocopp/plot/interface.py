@@ -5,7 +5,7 @@ import matplotlib.animation
 import matplotlib.pyplot as plt
 import numpy as np
 
-from cocopp_plot.results import along_axis, label, varying_component
+from cocopp.plot.axes import along_axis, label, varying_component
 
 
 def _message(ax, text):

@@ -1,7 +1,7 @@
 """cocopp bench's result: the error against the reference versus what a run cost, three ways:
 wall time (start-up included), coupling iterations (what the algorithm saves, free of timing
-noise) and the solvers' time (what the iterations cost in the solvers)."""
-import json
+noise) and the solvers' time (what the iterations cost in the solvers). The bench file is read
+by cocopp.results.read_bench."""
 import math
 import os
 
@@ -21,11 +21,6 @@ def cost(run, key):
     if key == "iterations":
         return run["solver_calls"] / 2 if run.get("solver_calls") else None
     return run.get(key)
-
-
-def load(path):
-    with open(path) as f:
-        return json.load(f)
 
 
 def plain_tick_labels(axis, limits):
