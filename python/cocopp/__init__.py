@@ -9,6 +9,6 @@ Modules, each importing only what it needs (NumPy always; h5py, matplotlib and y
   executable  the cocopp executable to run (a checkout's build, or an installed one)
   turek_hron  the Turek-Hron benchmark's flag, shared by examples/turek_hron/csm and fsi
 
-The solver SDK (cocopp_sdk, solver_wrappers/sdk) is a module of its own: a solver imports it
+The solver SDK (cocopp_sdk, solvers/sdk) is a module of its own: a solver imports it
 with nothing but NumPy.
 """
