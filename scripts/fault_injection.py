@@ -247,7 +247,11 @@ def protocol_abuse(trial, rng):
     fault_flow = {"type": "process", "name": "flow", "working_directory": "flow",
                   "command": ["/usr/bin/python3", fake]}
     trial.write_case(case_text(flow=fault_flow))
-    trial.start(extra_env={"COCOPP_FAULT": mode, "COCOPP_FAULT_STEP": str(rng.randint(1, 5))})
+    # The fake solver speaks the protocol with the Python SDK's constants.
+    sdk = os.path.join(ROOT, "solvers", "sdk")
+    trial.start(extra_env={"COCOPP_FAULT": mode, "COCOPP_FAULT_STEP": str(rng.randint(1, 5)),
+                           "PYTHONPATH": os.pathsep.join(
+                               filter(None, [sdk, os.environ.get("PYTHONPATH")]))})
     code, hung = trial.wait()
     text = trial.output()
     result = judge(trial, code, hung, text)

@@ -16,15 +16,20 @@ environment variable COCOPP_FAULT (the mode) and COCOPP_FAULT_STEP (the step, de
   error_flood     replies with an ERROR of 50 MB with escape sequences
   reply_twice     replies to FINALIZE_STEP with OK twice
   none            behaves (a control)
-Pipe transport only.
+Pipe transport only. The message types and the protocol version are the Python SDK's
+(cocopp_sdk, on PYTHONPATH: scripts/fault_injection.py puts solvers/sdk there).
 """
 import math
 import os
 import struct
 import sys
 
-INITIALIZE, INITIALIZE_STEP, SOLVE, FINALIZE_STEP, OUTPUT_STEP, STOP, SAVE_RESTART = range(1, 8)
-HELLO, OK, INTERFACE, DATA, ERROR = 128, 129, 130, 131, 132
+from cocopp_sdk import MESSAGE_TYPES, PROTOCOL_VERSION
+
+(INITIALIZE, INITIALIZE_STEP, SOLVE, FINALIZE_STEP, OUTPUT_STEP, STOP, SAVE_RESTART, HELLO, OK,
+ INTERFACE, DATA, ERROR) = (MESSAGE_TYPES[name] for name in (
+     "INITIALIZE", "INITIALIZE_STEP", "SOLVE", "FINALIZE_STEP", "OUTPUT_STEP", "STOP",
+     "SAVE_RESTART", "HELLO", "OK", "INTERFACE", "DATA", "ERROR"))
 POINTS = 100
 
 mode = os.environ.get("COCOPP_FAULT", "none")
@@ -78,7 +83,7 @@ def data(displacement, step):
     return bytes([DATA]) + f64_array(pressure + [0.0] * (3 * POINTS))
 
 
-send(struct.pack("<BIq", HELLO, 99 if mode == "bad_version" else 1, os.getpid()))
+send(struct.pack("<BIq", HELLO, 99 if mode == "bad_version" else PROTOCOL_VERSION, os.getpid()))
 step = 0
 while True:
     request = receive()

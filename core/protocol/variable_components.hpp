@@ -13,7 +13,8 @@ struct VariableDefinition {
   const char* unit;
 };
 
-/// Every variable an interface can carry. Add a row here to add a variable.
+/// Every variable an interface can carry. Add a row here to add a variable, and the same to
+/// solvers/sdk/cocopp_sdk.py and docs/protocol.md (ctest protocol_tables compares them).
 const std::vector<VariableDefinition>& variable_definitions();
 
 /// Components of `variable`, or 0 if the name is unknown.

@@ -34,22 +34,30 @@ import time
 import numpy as np
 
 __all__ = ["ModelPart", "Interface", "RunInfo", "Solver", "InputRejected", "ProtocolError",
-           "serve", "wants_help", "VARIABLE_COMPONENTS", "PROTOCOL_VERSION"]
+           "serve", "wants_help", "VARIABLE_COMPONENTS", "PROTOCOL_VERSION", "MESSAGE_TYPES",
+           "MAX_PAYLOAD"]
 
+# The protocol's constants and the variable table, as the C++ side defines them
+# (core/protocol/messages.hpp, frame.hpp, variable_components.cpp); ctest protocol_tables
+# compares them with it and with docs/protocol.md.
 PROTOCOL_VERSION = 1
-# Variables and their components per point (core/protocol/variable_components.cpp).
+# Variables and their components per point.
 VARIABLE_COMPONENTS = {"displacement": 3, "pressure": 1, "traction": 3, "force": 3,
-                       "velocity": 3, "temperature": 1, "heat_flux": 1}
+                       "velocity": 3, "temperature": 1, "heat_flux": 1, "gap": 1,
+                       "wall_displacement": 3, "coverage": 1, "driven": 1}
+# Message types, the first byte of every frame (docs/protocol.md, section 3): requests below
+# 128, replies from 128.
+MESSAGE_TYPES = {"INITIALIZE": 1, "INITIALIZE_STEP": 2, "SOLVE": 3, "FINALIZE_STEP": 4,
+                 "OUTPUT_STEP": 5, "STOP": 6, "SAVE_RESTART": 7, "REPORT_CONVERGENCE": 8,
+                 "HELLO": 128, "OK": 129, "INTERFACE": 130, "DATA": 131, "ERROR": 132,
+                 "REJECTED": 133, "DATA_CONVERGED": 134}
+# The longest frame payload either side accepts, in bytes.
+MAX_PAYLOAD = 1 << 30
 
-# Message types, the first byte of every frame (docs/protocol.md, section 3).
 (_INITIALIZE, _INITIALIZE_STEP, _SOLVE, _FINALIZE_STEP, _OUTPUT_STEP, _STOP, _SAVE_RESTART,
- _REPORT_CONVERGENCE) = range(1, 9)
-_HELLO, _OK, _INTERFACE, _DATA, _ERROR, _REJECTED, _DATA_CONVERGED = range(128, 135)
-_REQUEST_NAMES = {_INITIALIZE: "INITIALIZE", _INITIALIZE_STEP: "INITIALIZE_STEP",
-                  _SOLVE: "SOLVE", _FINALIZE_STEP: "FINALIZE_STEP",
-                  _OUTPUT_STEP: "OUTPUT_STEP", _STOP: "STOP", _SAVE_RESTART: "SAVE_RESTART",
-                  _REPORT_CONVERGENCE: "REPORT_CONVERGENCE"}
-_MAX_PAYLOAD = 1 << 30
+ _REPORT_CONVERGENCE, _HELLO, _OK, _INTERFACE, _DATA, _ERROR, _REJECTED,
+ _DATA_CONVERGED) = MESSAGE_TYPES.values()  # in MESSAGE_TYPES' order
+_REQUEST_NAMES = {number: name for name, number in MESSAGE_TYPES.items() if number < 128}
 
 
 class InputRejected(Exception):
@@ -442,7 +450,7 @@ class _PipeChannel:
 
     def receive(self):
         (length,) = struct.unpack("<I", self._read_exactly(4))
-        if not 1 <= length <= _MAX_PAYLOAD:
+        if not 1 <= length <= MAX_PAYLOAD:
             raise ProtocolError(f"a frame of {length} bytes was announced (corrupt stream?)")
         return self._read_exactly(length)
 
@@ -479,7 +487,7 @@ class _FileChannel:
                 time.sleep(pause)
                 pause = min(2 * pause, 0.02)
         with os.fdopen(descriptor, "rb") as message:
-            data = message.read(_MAX_PAYLOAD + 5)
+            data = message.read(MAX_PAYLOAD + 5)
         os.unlink(path)
         self.incoming += 1
         if len(data) < 5:
