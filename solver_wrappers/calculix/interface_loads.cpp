@@ -8,14 +8,6 @@
 
 namespace cocopp::calculix {
 
-std::string ccx_number(double value) {
-  // ccx reads a number from the first 20 characters of its field and fails on (or, worse,
-  // silently truncates) longer text: 14 significant digits fit, far more than the .dat file's
-  // 7 that come back. Values below 1e-99 would need a third exponent digit.
-  if (std::abs(value) < 1e-99) return "0.";
-  return fmt::format("{:.13E}", value);
-}
-
 InterfaceLoads::InterfaceLoads(const InputDeck& deck, std::vector<ElementFace> faces)
     : deck_(deck), faces_(std::move(faces)) {
   for (const auto& face : faces_) geometry_.push_back(face_geometry(deck, face));

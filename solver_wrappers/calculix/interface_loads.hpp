@@ -17,14 +17,12 @@
 #include <string>
 #include <vector>
 
+#include "core/data/calculix_interface_file.hpp"  // ccx_number
 #include "core/data/interface.hpp"
 #include "solver_wrappers/calculix/element_faces.hpp"
 #include "solver_wrappers/calculix/input_deck.hpp"
 
 namespace cocopp::calculix {
-
-/// A number as ccx can read it: at most 20 characters, 14 significant digits.
-std::string ccx_number(double value);
 
 class InterfaceLoads {
  public:

@@ -10,15 +10,8 @@
 //
 // The interface comes from `cocopp_interface.txt` in the working directory, written by the
 // `calculix` wrapper (solver_wrappers/calculix, mode persistent) next to the deck, whose step
-// has a placeholder load for every entry (so that ccx allocates it):
-//   amplitude ramp|step
-//   initial_increment T   (each coupler time step starts with an increment of T, seconds)
-//   force_scale S         (what ccx makes of a *CLOAD value: 1/180 in an axisymmetric model)
-//   linear 0|1            (1: no NLGEOM, no nonlinear material: one Newton iteration suffices)
-//   pressure_faces N OFFSET then N lines "element face" (input pressure, *DLOAD P<face>;
-//                         OFFSET 2 for plane elements, whose faces ccx numbers from 3)
-//   force_nodes N DOFS    then N lines "node"           (input force, *CLOAD dofs 1..DOFS)
-//   displacement_nodes N  then N lines "node"           (output displacement, ccx's dofs 1-3)
+// has a placeholder load for every entry (so that ccx allocates it); its format is defined once,
+// for both sides, in core/data/calculix_interface_file.hpp.
 #include <pthread.h>
 
 #include <algorithm>
@@ -38,6 +31,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/data/calculix_interface_file.hpp"
 #include "solvers/calculix/cocopp_ccx_hooks.h"
 #include "solvers/sdk/solver_sdk.hpp"
 
@@ -51,54 +45,7 @@ extern "C" void map3dto1d2d_(double* yn, int* ipkon, int* inum, int* kon, char* 
 
 namespace {
 
-constexpr const char* kInterfaceFile = "cocopp_interface.txt";
-
-struct InterfaceLists {
-  bool ramp = true;  ///< loads ramp over a coupling step (ccx's static default) or jump
-  double initial_increment = 0.0;  ///< of each coupler time step (step time)
-  double force_scale = 1.0;        ///< ccx's reading of a *CLOAD value (cloads.f)
-  int linear = 0;                  ///< a linear model: ccx may stop at its first Newton iteration
-  std::vector<std::pair<int, int>> pressure_faces;  ///< element, face 1..6
-  int face_offset = 0;  ///< ccx numbers a plane element's faces as its 3D expansion's: +2
-  std::vector<int> force_nodes;
-  int force_dofs = 3;
-  std::vector<int> displacement_nodes;
-};
-
-InterfaceLists read_interface(const std::string& file) {
-  std::ifstream in(file);
-  if (!in) throw std::runtime_error("cannot read " + file + " (the calculix wrapper writes it)");
-  InterfaceLists lists;
-  std::string key, amplitude;
-  std::size_t count = 0;
-  const auto expect = [&](const char* wanted) {
-    if (!(in >> key) || key != wanted)
-      throw std::runtime_error(file + ": expected '" + wanted + "', found '" + key + "'");
-  };
-  expect("amplitude");
-  in >> amplitude;
-  lists.ramp = amplitude == "ramp";
-  expect("initial_increment");
-  in >> lists.initial_increment;
-  expect("force_scale");
-  in >> lists.force_scale;
-  expect("linear");
-  in >> lists.linear;
-  expect("pressure_faces");
-  in >> count >> lists.face_offset;
-  lists.pressure_faces.resize(count);
-  for (auto& [element, face] : lists.pressure_faces) in >> element >> face;
-  expect("force_nodes");
-  in >> count >> lists.force_dofs;
-  lists.force_nodes.resize(count);
-  for (auto& node : lists.force_nodes) in >> node;
-  expect("displacement_nodes");
-  in >> count;
-  lists.displacement_nodes.resize(count);
-  for (auto& node : lists.displacement_nodes) in >> node;
-  if (!in) throw std::runtime_error(file + ": truncated or not a number where one belongs");
-  return lists;
-}
+using cocopp::calculix::InterfaceFile;
 
 /// The state a coupling iteration starts from: what ccx's cut-back restores, and its counters.
 class Checkpoint {
@@ -163,7 +110,7 @@ class CoupledCcx : public cocopp::sdk::Solver {
   cocopp::sdk::InterfaceDescription initialize(const cocopp::sdk::RunInfo& run) override {
     if (run.timestep_start > 0)
       throw std::runtime_error("cocopp-ccx cannot restart a run (it keeps no restart data)");
-    lists_ = read_interface(kInterfaceFile);
+    lists_ = InterfaceFile::read(InterfaceFile::kName);
     start_ccx();
     std::unique_lock lock(mutex_);
     changed_.wait(lock, [&] { return ccx_waiting_ || ccx_done_; });
@@ -460,7 +407,7 @@ class CoupledCcx : public cocopp::sdk::Solver {
   void start_ccx();
 
   std::vector<std::string> ccx_arguments_;
-  InterfaceLists lists_;
+  InterfaceFile lists_;
   pthread_t ccx_thread_{};
   bool ccx_started_ = false;
 
@@ -534,7 +481,7 @@ struct cocopp_ccx_hooks hooks {
 };
 
 void CoupledCcx::start_ccx() {
-  hooks.linear = lists_.linear;
+  hooks.linear = lists_.linear ? 1 : 0;
   ::cocopp_ccx_hooks = &hooks;
   pthread_attr_t attributes;
   pthread_attr_init(&attributes);

@@ -259,7 +259,8 @@ TEST(PatchedCcx, AxisymmetricCylinderMatchesLameAcrossRestarts) {
   CalculixCase test;
   SectorCylinder cylinder;
   cylinder.element_type = "CAX8";
-  test.create(cylinder.deck());
+  // Restart files between the steps: mode auto would run it persistent, in memory.
+  test.create(cylinder.deck(), "mode: per_iteration\n");
   test.wrapper().initialize();
   ASSERT_EQ(dynamic_cast<const CalculixSolverWrapper&>(test.wrapper()).state_reset(),
             CalculixSolverWrapper::StateReset::kRestart);
