@@ -6,9 +6,10 @@
 #include <vector>
 
 #include "core/case/registry.hpp"
-#include "solver_wrappers/solver_wrapper.hpp"
 
 namespace cocopp {
+
+class SolverWrapper;
 
 /// A tolerance a criterion compares the residual with: of the residual's `order`-norm ("1",
 /// "2", "inf"), relative to the step's first iteration or absolute. For plots of the residual

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "coupler/convergence/convergence_criterion.hpp"
+#include "solver_wrappers/solver_wrapper.hpp"
 
 namespace cocopp {
 namespace {

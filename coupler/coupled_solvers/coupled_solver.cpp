@@ -6,8 +6,6 @@
 #include <chrono>
 #include <cmath>
 
-#include "solver_wrappers/solver_error.hpp"
-
 namespace cocopp {
 
 namespace {
@@ -45,71 +43,31 @@ CoupledSolver::CoupledSolver(const Settings& settings)
           settings.child_or_empty("divergence").get_in_range("factor", 1e6, Range::at_least(1.0))),
       growth_iterations_(
           settings.child_or_empty("divergence").get_int_in_range("growth_iterations", 10, 0)),
-      backtracking_retries_(
-          settings.child_or_empty("backtracking").get_int_in_range("retries", 4, 0)),
-      backtracking_factor_(settings.child_or_empty("backtracking")
-                               .get_in_range("factor", 0.5, {0.0, 1.0, true, true})) {}
+      backtracking_{settings.child_or_empty("backtracking").get_int_in_range("retries", 4, 0),
+                    settings.child_or_empty("backtracking")
+                        .get_in_range("factor", 0.5, {0.0, 1.0, true, true})} {}
+
+CoupledSolver::~CoupledSolver() = default;
 
 void CoupledSolver::initialize(SolverWrapper& first, SolverWrapper& second) {
-  solvers_ = {&first, &second};
-  // Both processes start side by side: each takes milliseconds to load and read its input.
-  for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->start(); });
-  for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->initialize(); });
-  for (auto* solver : solvers_) solver->overlap_step_requests();
-  adopt_interfaces();
-  check_interfaces_match();
-  x_ = first.input_interface();
-  y_ = first.output_interface();
-  // Start from the displacement the second solver reports for its initial state.
-  x_.set_data(second.output_interface().data());
-  predictor_->initialize(x_.data());
-  criterion_->attach_solvers(solvers_);
+  scheme_ = std::make_unique<SerialScheme>(first, second, backtracking_, divergence_advice());
+  scheme_->set_loads_update([this](const Eigen::VectorXd& x, const Eigen::VectorXd& yt) {
+    return second_solver_input(x, yt);
+  });
+  scheme_->start();
+  predictor_->initialize(scheme_->x().data());
+  criterion_->attach_solvers(scheme_->solvers());
   on_initialized();
 }
 
-void CoupledSolver::adopt_interfaces() {
-  if (solvers_[0]->adopts_interfaces() && solvers_[1]->adopts_interfaces())
-    throw std::runtime_error(fmt::format(
-        "solvers '{}' and '{}' are both mapped: one of them must keep its own interface, which "
-        "the other maps onto",
-        solvers_[0]->name(), solvers_[1]->name()));
-  for (int i = 0; i < 2; ++i) {
-    SolverWrapper& other = *solvers_[1 - i];
-    if (solvers_[i]->adopts_interfaces())
-      timed(i, [&] {
-        solvers_[i]->adopt_interfaces(other.output_interface(), other.input_interface());
-      });
-  }
+const Interface& CoupledSolver::x() const {
+  static const Interface none;
+  return scheme_ ? scheme_->x() : none;
 }
 
-void CoupledSolver::check_interfaces_match() const {
-  const SolverWrapper& first = *solvers_[0];
-  const SolverWrapper& second = *solvers_[1];
-  auto mismatch = [](const SolverWrapper& from, const Interface& out, const SolverWrapper& to,
-                     const Interface& in) {
-    return std::runtime_error(fmt::format(
-        "the interfaces of the solvers do not fit together: '{}' gives [{}] but '{}' takes "
-        "[{}]. Both sides need the same model parts, point counts and variables in the same "
-        "order (non-matching meshes need a mapper)",
-        from.name(), out.describe(), to.name(), in.describe()));
-  };
-  if (!first.output_interface().same_layout(second.input_interface()))
-    throw mismatch(first, first.output_interface(), second, second.input_interface());
-  if (!second.output_interface().same_layout(first.input_interface()))
-    throw mismatch(second, second.output_interface(), first, first.input_interface());
-}
-
-template <class Call>
-void CoupledSolver::timed(int index, Call call) {
-  // Also a call that throws (a rejected input) took the solver's time, not the coupler's.
-  const Stopwatch stopwatch(solver_time_step_[index], solver_time_total_[index]);
-  call();
-}
-
-const Interface& CoupledSolver::timed_solve(int index, const Interface& input) {
-  const Interface* output = nullptr;
-  timed(index, [&] { output = &solvers_[index]->solve(input); });
-  return *output;
+const Interface& CoupledSolver::y() const {
+  static const Interface none;
+  return scheme_ ? scheme_->y() : none;
 }
 
 StepRecord CoupledSolver::solve_step(int step, double time) {
@@ -122,7 +80,6 @@ StepRecord CoupledSolver::iterate_step(int step, double time) {
   step_start_ = Clock::now();
   step_ = step;
   time_ = time;
-  solver_time_step_ = {0.0, 0.0};
   own_solvers_time_step_ = 0.0;
   own_iterations_ = 0;
   StepRecord record;
@@ -130,17 +87,17 @@ StepRecord CoupledSolver::iterate_step(int step, double time) {
   record.time = time;
   unfinished_step_ = step;
   unfinished_residuals_.clear();
-  for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->initialize_step(step, time); });
+  scheme_->begin_step(step, time);
 
   // The previous step's converged input: what the solvers last accepted.
-  Eigen::VectorXd accepted = x_.data();
+  Eigen::VectorXd accepted = scheme_->x().data();
   criterion_->initialize_step();
   on_step_start();
   Eigen::VectorXd x = first_input(predictor_->predict());
   bool tolerance_met = false;
   std::vector<std::string> notes;
   for (int iteration = 1;; ++iteration) {
-    const Eigen::VectorXd xt = evaluate_stepping_back(x, accepted, step, iteration, notes);
+    const Eigen::VectorXd xt = scheme_->evaluate_stepping_back(x, accepted, iteration, notes);
     accepted = x;
     const Eigen::VectorXd r = xt - x;
     record.residual_norms.push_back(r.norm());
@@ -170,90 +127,32 @@ StepRecord CoupledSolver::iterate_step(int step, double time) {
   for (auto& note : take_notes()) notes.push_back(std::move(note));
   record.warnings = count_repeats(notes);
   record.converged = tolerance_met;
-  x_.set_data(x);
+  scheme_->set_x(x);
   return record;
 }
 
 void CoupledSolver::synchronize(const Eigen::VectorXd& x) {
-  evaluate(x, step_, 0);
+  scheme_->evaluate(x, 0);
 }
 
 void CoupledSolver::commit_step(StepRecord& record) {
-  predictor_->update(x_.data());
+  predictor_->update(scheme_->x().data());
   on_step_end();
-  for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->finalize_step(); });
-  for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->output_step(); });
-  // Both solvers commit and write side by side; a failure there still ends this step.
-  for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->complete_step_requests(); });
+  scheme_->commit_step();
 
   unfinished_step_ = 0;
   unfinished_residuals_.clear();
   record.wall_time = seconds_since(step_start_);
-  record.solver_times = {solver_time_step_[0], solver_time_step_[1]};
+  const auto& solver_times = scheme_->step_times();
+  record.solver_times = {solver_times[0], solver_times[1]};
   record.coupler_time =
-      record.wall_time - solver_time_step_[0] - solver_time_step_[1] - own_solvers_time_step_;
+      record.wall_time - solver_times[0] - solver_times[1] - own_solvers_time_step_;
   record.surrogate_iterations = own_iterations_;
 }
 
 void CoupledSolver::save_solver_restarts(int step) {
-  for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->save_restart(step); });
+  scheme_->save_restarts(step);
   save_own_solver_restarts(step);
-}
-
-Eigen::VectorXd CoupledSolver::evaluate(const Eigen::VectorXd& x, int step, int iteration) {
-  x_.set_data(x);
-  const Interface& y = timed_solve(0, x_);
-  check_finite(y, *solvers_[0], step, iteration);
-  y_.set_data(second_solver_input(x, y.data()));
-  const Interface& xt = timed_solve(1, y_);
-  check_finite(xt, *solvers_[1], step, iteration);
-  return xt.data();
-}
-
-Eigen::VectorXd CoupledSolver::evaluate_stepping_back(Eigen::VectorXd& x,
-                                                      const Eigen::VectorXd& accepted, int step,
-                                                      int iteration,
-                                                      std::vector<std::string>& notes) {
-  std::string first_rejection;  // the one that says what went wrong with the iteration's input
-  for (int retry = 1;; ++retry) {
-    try {
-      return evaluate(x, step, iteration);
-    } catch (const SolverRejectedInput& e) {
-      if (first_rejection.empty()) first_rejection = e.what();
-      if (retry > backtracking_retries_)
-        throw SolverError(
-            e.solver_name(),
-            fmt::format("{}\n(time step {}, coupling iteration {}: the coupled solver stepped "
-                        "back {} times towards the last input both solvers accepted, "
-                        "coupled_solver.backtracking.retries = {})",
-                        first_rejection, step, iteration, backtracking_retries_,
-                        backtracking_retries_));
-      // The rejected input lies too far from one the solver can take: the step towards it
-      // from the last accepted input is too long, whatever made it (a quasi-Newton update
-      // from poor secant information, an extrapolating predictor).
-      x = accepted + backtracking_factor_ * (x - accepted);
-      notes.push_back(fmt::format(
-          "solver '{}' rejected the input of iteration {}: the step from the last accepted "
-          "input was shortened {} time(s) by {:g}",
-          e.solver_name(), iteration, retry, backtracking_factor_));
-    }
-  }
-}
-
-void CoupledSolver::check_finite(const Interface& data, const SolverWrapper& solver, int step,
-                                 int iteration) const {
-  if (data.data().allFinite()) return;
-  for (const auto& block : data.blocks()) {
-    const auto values = data.values(block.model_part, block.variable);
-    for (Eigen::Index point = 0; point < values.rows(); ++point)
-      if (!values.row(point).allFinite())
-        throw DivergenceError(DivergenceKind::kNonFinite, step, iteration,
-                              fmt::format("solver '{}' returned a non-finite {} at model part "
-                                          "'{}', point {} (of {}), in time step {}, coupling "
-                                          "iteration {}. {}",
-                                          solver.name(), block.variable, block.model_part, point,
-                                          values.rows(), step, iteration, divergence_advice()));
-  }
 }
 
 void CoupledSolver::check_divergence(const std::vector<double>& norms, int step, double time,
@@ -299,7 +198,7 @@ void CoupledSolver::check_divergence(const std::vector<double>& norms, int step,
 
 void CoupledSolver::save_state(State& state) const {
   const auto& history = predictor_->history();
-  Eigen::MatrixXd columns(x_.size(), Eigen::Index(history.size()));
+  Eigen::MatrixXd columns(x().size(), Eigen::Index(history.size()));
   for (std::size_t i = 0; i < history.size(); ++i) columns.col(Eigen::Index(i)) = history[i];
   state.group("predictor").set("history", std::move(columns));
   state.set("largest_first_residual", largest_first_residual_);
@@ -308,15 +207,15 @@ void CoupledSolver::save_state(State& state) const {
 
 void CoupledSolver::load_state(const State& state, bool own) {
   const Eigen::MatrixXd& columns = state.group("predictor").matrix("history");
-  if (columns.rows() != x_.size() || columns.cols() == 0)
+  if (columns.rows() != x().size() || columns.cols() == 0)
     throw std::runtime_error(fmt::format(
         "the saved coupled-solver state holds an interface of {} values, this run's has {} "
         "([{}])",
-        columns.rows(), x_.size(), x_.describe()));
+        columns.rows(), x().size(), x().describe()));
   std::deque<Eigen::VectorXd> history;
   for (Eigen::Index i = 0; i < columns.cols(); ++i) history.push_back(columns.col(i));
   predictor_->restore(std::move(history));
-  x_.set_data(columns.col(0));
+  scheme_->set_x(columns.col(0));
   // (State files written before it was saved lack it: the growth check is then strict.)
   if (state.has("largest_first_residual"))
     largest_first_residual_ = state.scalar("largest_first_residual");
@@ -332,10 +231,10 @@ std::string CoupledSolver::divergence_advice() const {
 std::string CoupledSolver::describe() const {
   const std::string settings = describe_settings();
   const std::string backtracking =
-      backtracking_retries_ == 0
+      backtracking_.retries == 0
           ? ""
           : fmt::format(", a rejected input retried {} times, the step shortened by {:g}",
-                        backtracking_retries_, backtracking_factor_);
+                        backtracking_.retries, backtracking_.factor);
   return fmt::format("{}{}, predictor {}, stop at {}{}", type_,
                      settings.empty() ? "" : " (" + settings + ")", predictor_type_,
                      criterion_->describe(), backtracking);

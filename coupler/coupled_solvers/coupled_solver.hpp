@@ -2,15 +2,16 @@
 // CoupledSolver: runs the coupling iterations of one time step between two solver wrappers.
 //
 // Notation (as in CoCoNuT): the first solver F maps the interface displacement x to loads y,
-// the second S maps y back to a displacement x~; the residual is r = x~ - x. The base class
-// owns the predictor, the convergence criterion and the divergence checks; each coupled solver
-// only says how the next x follows from x, x~ and r (`next_input`).
+// the second S maps y back to a displacement x~; the residual is r = x~ - x. The solvers are
+// run by a SerialScheme (coupler/schemes: starting, timing, stepping back, the overlapped step
+// requests); the base class owns the iteration loop, the predictor, the convergence criterion
+// and the divergence checks; each coupled solver only says how the next x follows from x, x~
+// and r (`next_input`) and what it keeps between steps (its state).
 #include <Eigen/Core>
 #include <array>
 #include <chrono>
 #include <functional>
 #include <memory>
-#include <stdexcept>
 #include <string>
 
 #include "coupler/convergence/convergence_criterion.hpp"
@@ -18,22 +19,13 @@
 #include "coupler/results/run_outcome.hpp"
 #include "coupler/results/state.hpp"
 #include "coupler/results/step_record.hpp"
+#include "coupler/schemes/serial_scheme.hpp"
+#include "coupler/schemes/stopwatch.hpp"
 #include "solver_wrappers/solver_wrapper.hpp"
 
 namespace cocopp {
 
 class Model;
-
-/// The coupling diverged (residual growth or non-finite data) in a step and iteration; the
-/// message says where and what to change.
-class DivergenceError : public std::runtime_error {
- public:
-  DivergenceError(DivergenceKind kind, int step, int iteration, const std::string& message)
-      : std::runtime_error(message), kind(kind), step(step), iteration(iteration) {}
-  DivergenceKind kind;
-  int step;
-  int iteration;
-};
 
 /// One coupling iteration as it ends, for `cocopp run --verbose`.
 struct IterationReport {
@@ -51,9 +43,9 @@ class CoupledSolver {
  public:
   static constexpr const char* kind = "coupled solver";
   explicit CoupledSolver(const Settings& settings);
-  virtual ~CoupledSolver() = default;
+  virtual ~CoupledSolver();
 
-  /// Start both solvers and check that their interfaces fit together.
+  /// Start both solvers (a SerialScheme of them) and check that their interfaces fit together.
   void initialize(SolverWrapper& first, SolverWrapper& second);
   /// Create what the coupled solver itself runs besides the case's two solvers (iqnism's
   /// surrogate solvers), from its settings; called once, while the case is read.
@@ -86,8 +78,8 @@ class CoupledSolver {
   /// The interfaces x (displacement) and y (loads): during a step the values of the current
   /// coupling iteration (y as given to the second solver), after it the converged values of
   /// the step.
-  const Interface& x() const { return x_; }
-  const Interface& y() const { return y_; }
+  const Interface& x() const;
+  const Interface& y() const;
   /// "iqni (omega 0.05, model ls q 10), predictor linear, until (...)": for the run header.
   std::string describe() const;
   /// When a step's iterations stop.
@@ -101,7 +93,7 @@ class CoupledSolver {
   /// so that another coupled solver can continue the run.
   void load_state(const State& state, bool own = true);
   /// Wall time spent in each solver since initialize(), in seconds.
-  const std::array<double, 2>& solver_time_total() const { return solver_time_total_; }
+  const std::array<double, 2>& solver_time_total() const { return scheme_->total_times(); }
   /// Wall time spent in the coupled solver's own solvers (iqnism's surrogate, its coupling
   /// included) since initialize(), in seconds: not the coupler's time.
   double own_solvers_time_total() const { return own_solvers_time_total_; }
@@ -158,61 +150,23 @@ class CoupledSolver {
   std::string type_;
 
  private:
-  /// One coupling iteration: y = F(x), x~ = S(y). Returns x~.
-  Eigen::VectorXd evaluate(const Eigen::VectorXd& x, int step, int iteration);
-  /// evaluate(), but when a solver rejects x (SolverRejectedInput) x steps back towards
-  /// `accepted`, the last input both solvers solved, by `backtracking.factor`, up to
-  /// `backtracking.retries` times; each step back is noted in `notes`.
-  Eigen::VectorXd evaluate_stepping_back(Eigen::VectorXd& x, const Eigen::VectorXd& accepted,
-                                         int step, int iteration, std::vector<std::string>& notes);
-  const Interface& timed_solve(int index, const Interface& input);
-  template <class Call>
-  void timed(int index, Call call);
-  void check_finite(const Interface& data, const SolverWrapper& solver, int step,
-                    int iteration) const;
   /// Throws DivergenceError; a growth at the solvers' noise level becomes a note instead.
-  /// Adds the time of its scope to a step's and a run's total, also when the scope is left
-  /// by an exception (a rejected input, an interrupted surrogate step took that time too).
-  class Stopwatch {
-   public:
-    Stopwatch(double& step_total, double& run_total) : step_(step_total), run_(run_total) {}
-    ~Stopwatch() {
-      const double elapsed =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-      step_ += elapsed;
-      run_ += elapsed;
-    }
-    Stopwatch(const Stopwatch&) = delete;
-    Stopwatch& operator=(const Stopwatch&) = delete;
-
-   private:
-    double& step_;
-    double& run_;
-    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-  };
-
   void check_divergence(const std::vector<double>& norms, int step, double time,
                         std::vector<std::string>& notes) const;
-  void adopt_interfaces();
-  void check_interfaces_match() const;
 
   std::string predictor_type_;
   std::unique_ptr<Predictor> predictor_;
   std::unique_ptr<ConvergenceCriterion> criterion_;
   double divergence_factor_;
-  int growth_iterations_;     ///< 0: off
-  int backtracking_retries_;  ///< 0: a rejected input stops the run
-  double backtracking_factor_;
-  std::array<SolverWrapper*, 2> solvers_{};
-  Interface x_, y_;  ///< layouts of the first solver's input and output
+  int growth_iterations_;  ///< 0: off
+  SerialScheme::Backtracking backtracking_;
+  std::unique_ptr<SerialScheme> scheme_;  ///< the case's two solvers, after initialize()
   std::chrono::steady_clock::time_point step_start_;
   std::function<void(const IterationReport&)> iteration_observer_;
   int unfinished_step_ = 0;
   std::vector<double> unfinished_residuals_;
   int step_ = 0;
   double time_ = 0.0;
-  std::array<double, 2> solver_time_step_{};
-  std::array<double, 2> solver_time_total_{};
   double own_solvers_time_step_ = 0.0, own_solvers_time_total_ = 0.0;
   int own_iterations_ = 0;
   /// The largest residual of a step's first iteration in the run: the scale the noise floor of

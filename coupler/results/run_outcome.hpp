@@ -1,6 +1,7 @@
 #pragma once
 // How a run ended, as one type for the results file, the summary, the printed messages and
 // cocopp bench: no caller sorts outcomes by searching message text.
+#include <stdexcept>
 #include <string>
 
 namespace cocopp {
@@ -16,6 +17,17 @@ enum class RunStatus {
 };
 
 enum class DivergenceKind { kNone, kNonFinite, kGrowth };
+
+/// The coupling diverged (residual growth or non-finite data) in a step and iteration; the
+/// message says where and what to change.
+class DivergenceError : public std::runtime_error {
+ public:
+  DivergenceError(DivergenceKind kind, int step, int iteration, const std::string& message)
+      : std::runtime_error(message), kind(kind), step(step), iteration(iteration) {}
+  DivergenceKind kind;
+  int step;
+  int iteration;
+};
 
 /// "completed", "stalled", "diverged", "solver_failed", "interrupted", "failed", "invalid_case":
 /// the `status` of the results file and of the summary.
