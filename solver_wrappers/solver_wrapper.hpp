@@ -1,23 +1,17 @@
 #pragma once
-// SolverWrapper: what the coupled solvers see of a solver. Every wrapper (a solver process and
-// the built-in tube types, a mapped wrapper, openfoam, calculix) implements this, so the
-// coupling algorithms never know which solver is behind an interface.
+// SolverWrapper: what the coupler sees of a solver. Every wrapper (a solver process and the
+// built-in tube types, a mapped wrapper, openfoam, calculix) implements this, so the coupling
+// algorithms never know which solver is behind an interface; only the coupling scheme
+// (coupler/schemes) asks one whether it adopts the other's interface (a mapped wrapper).
 #include <filesystem>
 #include <string>
 
 #include "core/case/registry.hpp"
+#include "core/case/run_settings.hpp"
 #include "core/data/interface.hpp"
 #include "solver_wrappers/solver_error.hpp"
 
 namespace cocopp {
-
-/// Run settings every wrapper needs (from the case file's `settings` section).
-struct RunSettings {
-  double delta_t = 0.0;
-  int timestep_start = 0;
-  int number_of_timesteps = 0;
-  std::filesystem::path case_directory;  ///< relative paths in the case are resolved here
-};
 
 class SolverWrapper {
  public:

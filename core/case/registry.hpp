@@ -61,6 +61,13 @@ class Registry {
     return out;
   }
 
+  /// Create the component registered as `name` (one of names()): for kinds that are not
+  /// chosen by a `type` key but each asked for by keys of their own (the run's outputs).
+  std::unique_ptr<Base> create_named(const std::string& name, const Settings& settings,
+                                     Args... args) const {
+    return factories_.at(name).factory(settings, std::forward<Args>(args)...);
+  }
+
   /// Create the component named by settings' `type`; unknown names are case errors.
   std::unique_ptr<Base> create(const Settings& settings, Args... args) const {
     const auto type = settings.template required<std::string>("type");

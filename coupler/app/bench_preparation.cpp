@@ -7,6 +7,7 @@
 
 #include "core/case/settings.hpp"
 #include "coupler/app/case.hpp"
+#include "coupler/results/run_files.hpp"
 
 namespace cocopp {
 
@@ -136,7 +137,8 @@ void check_saved_state(const YAML::Node& base_case, const BenchFile& bench) {
         "continue them as results/case: run the base case with the default results_directory "
         "and results_name",
         bench.file.string(), directory, name));
-  const fs::path state = bench.base_case.parent_path() / "results/case.state.h5";
+  const fs::path state =
+      RunFiles{bench.base_case.parent_path() / directory, name}.state().lexically_normal();
   if (!fs::is_regular_file(state))
     throw CaseError(
         fmt::format("{}: start_from_state: no saved state {} (run the base case "

@@ -82,25 +82,25 @@ void prepare_restart(Case& c, bool restart, const Settings& settings) {
                                     "{}: settings.timestep_start is {}: the run continues from the "
                                     "state saved after that step",
                                     settings.where("timestep_start"), case_start);
-  if (!std::filesystem::exists(c.state_file()))
+  if (!std::filesystem::exists(c.files.state()))
     throw std::runtime_error(fmt::format(
         "cannot restart: there is no state file {} ({}). A run saves it at its end and every "
         "settings.state_interval steps; {}",
-        c.state_file().string(), why,
+        c.files.state().string(), why,
         restart ? "run the case without --restart first"
                 : "set timestep_start to 0 to run from the start"));
-  SavedState saved = read_state_file(c.state_file());
+  SavedState saved = read_state_file(c.files.state());
   if (!restart && saved.step != case_start)
     throw std::runtime_error(
         fmt::format("cannot restart after step {}: the state file {} holds step {} ({}); set "
                     "timestep_start to {}, or run with --restart",
-                    case_start, c.state_file().string(), saved.step, why, saved.step));
+                    case_start, c.files.state().string(), saved.step, why, saved.step));
   const int end = case_start + c.run.number_of_timesteps;
   if (saved.step >= end)
     throw std::runtime_error(fmt::format(
         "nothing to restart: the state file {} is at step {} and the case ends at step {} "
         "(t = {:g} s): raise settings.number_of_timesteps or settings.end_time to go on",
-        c.state_file().string(), saved.step, end, end * c.run.delta_t));
+        c.files.state().string(), saved.step, end, end * c.run.delta_t));
   c.run.timestep_start = saved.step;
   c.run.number_of_timesteps = end - saved.step;
   c.restart = std::move(saved);
@@ -114,26 +114,15 @@ Case load_case(const std::filesystem::path& file, bool restart) {
   c.file = file;
   const Settings settings = root.child("settings");
   c.run = read_run_settings(settings, root.base_directory());
-  c.results_directory =
-      root.base_directory() / settings.get<std::string>("results_directory", "results");
-  c.results_where = settings.where("results_directory") + ": 'settings.results_directory'";
   // The stem of files the run creates: a plain name when given (not "../x"); the case file's
   // own stem otherwise.
-  c.results_name =
-      settings.has("results_name") ? settings.get_name("results_name", "") : file.stem().string();
+  c.files = {
+      root.base_directory() / settings.get<std::string>("results_directory", "results"),
+      settings.has("results_name") ? settings.get_name("results_name", "") : file.stem().string()};
+  c.results_where = settings.where("results_directory") + ": 'settings.results_directory'";
   c.state_interval = settings.get_int_in_range("state_interval", 0, 0);
-  c.results_write_interval =
-      settings.get_in_range("results_write_interval", 0.0, Range::closed(0.0, 3600.0));
-  c.vtk_output = settings.get<bool>("vtk_output", false);
-  for (const double step : settings.get<std::vector<double>>("vtk_iterations", {})) {
-    if (step < 1 || step != std::floor(step) || step > 1e9)
-      settings.fail("vtk_iterations",
-                    fmt::format("{:g} is not a time step number: list the steps (1, 2, ...) whose "
-                                "coupling iterations to write",
-                                step));
-    c.vtk_iterations.push_back(static_cast<int>(step));
-  }
   c.watchpoints = Watchpoints(settings);
+  c.outputs = create_outputs(settings);
   prepare_restart(c, restart, settings);
 
   const Settings coupled = root.child("coupled_solver");

@@ -6,6 +6,7 @@
 #include "coupler/convergence/convergence_criterion.hpp"
 #include "coupler/coupled_solvers/coupled_solver.hpp"
 #include "coupler/coupled_solvers/models/model.hpp"
+#include "coupler/outputs/run_output.hpp"
 #include "coupler/predictors/predictor.hpp"
 #include "mappers/interpolators/interpolator.hpp"
 #include "mappers/transformers/transformer.hpp"
@@ -25,6 +26,8 @@ std::vector<ComponentKind> component_kinds() {
        InterpolatorRegistry::instance().names()},
       {"transformers", "solver_wrappers[].{input,output}_mapper.transformers[].type",
        TransformerRegistry::instance().names()},
+      {"outputs", "settings: results_write_interval, vtk_output, vtk_iterations, watchpoints",
+       RunOutputRegistry::instance().names()},
   };
 }
 

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -12,11 +13,9 @@
 #include "core/case/path_problem.hpp"
 #include "coupler/app/case.hpp"
 #include "coupler/app/case_lock.hpp"
-#include "coupler/results/results_writer.hpp"
-#include "coupler/results/run_summary.hpp"
+#include "coupler/outputs/progress_output.hpp"
+#include "coupler/outputs/summary_output.hpp"
 #include "coupler/results/state_file.hpp"
-#include "coupler/results/vtk_series.hpp"
-#include "coupler/results/watchpoint_csv.hpp"
 #include "solver_wrappers/process/child_process.hpp"
 #include "solver_wrappers/solver_error.hpp"
 
@@ -39,17 +38,15 @@ void on_interrupt(int signal) {
 /// file, a loop of links or a name too long. And cocopp writes only files it creates: a link
 /// at a results file's name (planted, or made by hand) would make it overwrite its target.
 void check_results_files(const Case& c) {
-  if (const auto why = path_problem(c.results_directory, PathKind::kDirectory);
+  if (const auto why = path_problem(c.files.directory, PathKind::kDirectory);
       !why.empty() && why != "does not exist")
     throw std::runtime_error(c.results_where + ": cannot use the directory " +
-                             c.results_directory.string() + ": it " + why);
-  for (const char* extension : {".h5", ".summary.json", ".state.h5"}) {
-    const auto file = c.results_directory / (c.results_name + extension);
+                             c.files.directory.string() + ": it " + why);
+  for (const auto& file : c.files.replaced())
     if (std::filesystem::is_symlink(file))
       throw std::runtime_error(file.string() +
                                " is a symbolic link: cocopp writes only files it creates (it "
                                "would overwrite the link's target); remove the link");
-  }
 }
 
 void print_header(const Case& c) {
@@ -60,11 +57,11 @@ void print_header(const Case& c) {
   fmt::print("  coupled solver : {}\n", c.coupled_solver->describe());
   for (std::size_t i = 0; i < c.solvers.size(); ++i)
     fmt::print("  solver {}       : {}\n", i + 1, c.solvers[i]->describe());
-  fmt::print("  results        : {}{}\n", (c.results_directory / c.results_name).string() + ".h5",
+  fmt::print("  results        : {}{}\n", c.files.results().string(),
              c.restart ? fmt::format(" (continued after step {})", c.restart->step) : "");
   if (c.restart)
     fmt::print("  restart        : after step {} (t = {:g} s) from {}\n", c.restart->step,
-               c.restart->time, c.state_file().string());
+               c.restart->time, c.files.state().string());
 }
 
 RunDescription describe_run(const Case& c) {
@@ -81,48 +78,20 @@ RunDescription describe_run(const Case& c) {
   return d;
 }
 
-/// "42 s", "3 min 20 s", "2 h 05 min".
-std::string duration(double seconds) {
-  const long s = std::lround(seconds);
-  if (s < 60) return fmt::format("{} s", s);
-  if (s < 3600) return fmt::format("{} min {:02} s", s / 60, s % 60);
-  return fmt::format("{} h {:02} min", s / 3600, (s % 3600) / 60);
-}
-
-/// One line per time step: the residual (2-norm, and as the criterion measures it where that
-/// differs: "relative 3.1e-07"), the step's wall time, and the time left at the average pace
-/// of the steps so far.
-void print_progress(const StepRecord& r, int last_step, double seconds_left) {
-  const std::string criterion =
-      r.criterion_progress.empty() ? "" : " (" + r.criterion_progress + ")";
-  const std::string surrogate =
-      r.surrogate_iterations > 0 ? fmt::format("  (surrogate {:>2})", r.surrogate_iterations) : "";
-  const std::string left = r.step < last_step ? "  left " + duration(seconds_left) : "";
-  fmt::print(
-      "step {:>{}} / {}  t = {:<10.4g} iterations {:>3}  residual {:.3e}{}{}  {:8.3f} ms{}{}\n",
-      r.step, std::to_string(last_step).size(), last_step, r.time, r.iterations,
-      r.residual_norms.back(), r.converged ? " " : "*", criterion, 1e3 * r.wall_time, surrogate,
-      left);
-  std::fflush(stdout);
-}
-
-/// `--verbose`: one line per coupling iteration, indented under the step's line to come.
-void print_iteration(const IterationReport& r) {
-  fmt::print("    step {} iteration {:>3}  residual {:.3e}{}  {:.3f} s into the step\n", r.step,
-             r.iteration, r.residual, r.criterion.empty() ? "" : " (" + r.criterion + ")",
-             r.step_seconds);
-  std::fflush(stdout);
-}
-
+/// One run of a case: start the solvers, march in time feeding every output, save the state,
+/// stop the solvers, close the outputs and print how it went.
 class Run {
  public:
-  explicit Run(Case& c) : case_(c), summary_(describe_run(c)) {}
+  Run(Case& c, const RunOptions& options)
+      : case_(c),
+        options_(options),
+        summary_(describe_run(c), c.files),
+        progress_(!options.quiet && !options.silent, options.verbose, !options.silent) {}
 
-  RunOutcome execute(const RunOptions& options) {
-    silent_ = options.silent;
+  RunOutcome execute() {
     RunOutcome outcome;
     try {
-      march(options);
+      march();
       outcome = went_through();
     } catch (const DivergenceError& e) {
       outcome = stopped(RunStatus::kDiverged, e.what());
@@ -145,62 +114,27 @@ class Run {
     return outcome;
   }
 
-  const RunSummary& summary() const { return summary_; }
-  std::filesystem::path results_file() const { return results_path(".h5"); }
+  const RunSummary& summary() const { return summary_.summary(); }
 
  private:
-  void march(const RunOptions& options) {
+  void march() {
     CoupledSolver& coupled = *case_.coupled_solver;
     coupled.initialize(*case_.solvers[0], *case_.solvers[1]);
-    if (!silent_)
+    if (!options_.silent)
       fmt::print("  started        : {}, {}\n", case_.solvers[0]->started(),
                  case_.solvers[1]->started());
-    const int continue_after = case_.restart ? case_.restart->step : -1;
-    if (!case_.watchpoints.empty()) {
-      case_.watchpoints.attach(coupled.x(), coupled.y());
-      watchpoint_csv_ = std::make_unique<WatchpointCsv>(case_.results_directory, case_.results_name,
-                                                        case_.watchpoints.layout(), continue_after);
-    }
-    if (case_.restart) {
-      coupled.load_state(case_.restart->state, !options.fresh_coupling);
-      writer_ = std::make_unique<ResultsWriter>(results_path(".h5"), describe_run(case_),
-                                                coupled.x(), coupled.y(), case_.restart->step,
-                                                case_.watchpoints.layout());
-    } else {
-      writer_ =
-          std::make_unique<ResultsWriter>(results_path(".h5"), describe_run(case_), coupled.x(),
-                                          coupled.y(), case_.watchpoints.layout());
-    }
-    writer_->set_write_interval(case_.results_write_interval);
-    if (case_.vtk_output)
-      vtk_ = std::make_unique<VtkSeries>(case_.results_directory, case_.results_name,
-                                         case_.restart ? case_.restart->step : -1);
-    const bool verbose = options.verbose;
-    if (verbose || !case_.vtk_iterations.empty())
-      coupled.set_iteration_observer([this, verbose](const IterationReport& report) {
-        if (verbose) print_iteration(report);
-        write_iteration_vtk(report);
-      });
+    if (case_.restart) coupled.load_state(case_.restart->state, !options_.fresh_coupling);
+    open_outputs();
     const int first = case_.run.timestep_start + 1;
     const int last = case_.run.timestep_start + case_.run.number_of_timesteps;
-    const auto march_start = std::chrono::steady_clock::now();
     for (int step = first; step <= last; ++step) {
       current_step_ = step;
-      const StepRecord record = coupled.solve_step(step, step * case_.run.delta_t);
-      // No watchpoints: an empty interface, which the writer leaves out.
-      const Interface& watched = case_.watchpoints.sample(coupled.x(), coupled.y());
-      writer_->write_step(record, coupled.x(), coupled.y(), watched);
-      if (watchpoint_csv_) watchpoint_csv_->write_step(step, record.time, watched);
-      if (vtk_) vtk_->write_step(step, record.time, vtk_parts(coupled.x(), coupled.y()));
-      summary_.add_step(record);
+      StepRecord record = coupled.solve_step(step, step * case_.run.delta_t);
+      // No watchpoints: an empty interface.
+      record.watchpoints = case_.watchpoints.sample(coupled.x(), coupled.y()).data();
+      for (RunOutput* output : opened_) output->write_step(record);
       iterations_ += record.iterations;
       algorithm_time_ += record.coupler_time;
-      if (!options.quiet && !silent_) {
-        const std::chrono::duration<double> elapsed =
-            std::chrono::steady_clock::now() - march_start;
-        print_progress(record, last, elapsed.count() / (step - first + 1) * (last - step));
-      }
-      print_warnings(record);
       // The last step is saved once, after the loop.
       if (case_.state_interval > 0 && step < last && step % case_.state_interval == 0)
         save_state(step);
@@ -209,31 +143,43 @@ class Run {
     current_step_ = 0;
   }
 
-  /// settings.vtk_iterations: the iteration's x, y and residual r = x~ - x of a chosen step, as
-  /// <name>_step<step>_iterations.pvd with the iteration number as its time.
-  void write_iteration_vtk(const IterationReport& report) {
-    const auto& chosen = case_.vtk_iterations;
-    if (std::find(chosen.begin(), chosen.end(), report.step) == chosen.end()) return;
+  /// The case's outputs, then the progress lines and the summary (the last: it records every
+  /// other output's failure to close); a restarted run's continue after its step.
+  void open_outputs() {
     const CoupledSolver& coupled = *case_.coupled_solver;
-    if (report.iteration == 1 || !iteration_vtk_)
-      iteration_vtk_ = std::make_unique<VtkSeries>(
-          case_.results_directory,
-          fmt::format("{}_step{:06d}_iterations", case_.results_name, report.step));
-    std::vector<VtkPart> parts = vtk_parts(coupled.x(), coupled.y());
-    Interface residual = coupled.x();
-    residual.set_data(*report.residual_vector);
-    add_vtk_fields(parts, residual, "residual_");
-    iteration_vtk_->write_step(report.iteration, report.iteration, parts);
+    if (!case_.watchpoints.empty()) case_.watchpoints.attach(coupled.x(), coupled.y());
+    const RunDescription run = describe_run(case_);
+    const OutputStart start{case_.files,
+                            run,
+                            coupled.x(),
+                            coupled.y(),
+                            case_.watchpoints.layout(),
+                            case_.restart ? case_.restart->step : -1};
+    std::vector<RunOutput*> outputs;
+    for (const auto& output : case_.outputs) outputs.push_back(output.get());
+    outputs.push_back(&progress_);
+    outputs.push_back(&summary_);
+    for (RunOutput* output : outputs) {
+      output->open(start);
+      opened_.push_back(output);
+    }
+    std::vector<RunOutput*> iterations;
+    for (RunOutput* output : opened_)
+      if (output->wants_iterations()) iterations.push_back(output);
+    if (!iterations.empty())
+      case_.coupled_solver->set_iteration_observer([iterations](const IterationReport& report) {
+        for (RunOutput* output : iterations) output->write_iteration(report);
+      });
   }
 
   /// Every step computed: completed, or stalled if some were accepted at the iteration limit.
   RunOutcome went_through() const {
     RunOutcome outcome;
-    const auto& unconverged = summary_.unconverged_steps();
+    const auto& unconverged = summary().unconverged_steps();
     if (unconverged.empty()) return outcome;
     outcome.status = RunStatus::kStalled;
     outcome.reason = fmt::format("{} of {} steps at the iteration limit", unconverged.size(),
-                                 summary_.steps_completed());
+                                 summary().steps_completed());
     return outcome;
   }
 
@@ -246,7 +192,7 @@ class Run {
     const std::string where =
         current_step_ > 0
             ? fmt::format("in step {}", current_step_)
-            : (summary_.steps_completed() > 0 ? "after the last step" : "at start-up");
+            : (summary().steps_completed() > 0 ? "after the last step" : "at start-up");
     outcome.reason = fmt::format("{} {}", status_text(status), where);
     return outcome;
   }
@@ -262,23 +208,10 @@ class Run {
     }
   }
 
-  /// The first few steps' warnings as they come; all of them go to the summary.
-  void print_warnings(const StepRecord& record) {
-    constexpr int kPrintedSteps = 5;
-    if (silent_ || record.warnings.empty() || ++steps_with_warnings_ > kPrintedSteps + 1) return;
-    if (steps_with_warnings_ > kPrintedSteps) {
-      fmt::print("warning: more steps with warnings follow: see \"warnings\" in {}\n",
-                 results_path(".summary.json").string());
-      return;
-    }
-    for (const auto& warning : record.warnings)
-      fmt::print("warning: step {}: {}\n", record.step, warning);
-  }
-
   /// Between steps only: in the middle of a step the models hold half a step's columns.
   void save_state(int step) {
-    // A restart continues the results file after the state's step: it must be in the file.
-    writer_->write_kept_steps();
+    // A restart continues the outputs after the state's step: they must hold it.
+    for (RunOutput* output : opened_) output->flush();
     // The solvers first: a state file always has the solvers' restart data behind it.
     case_.coupled_solver->save_solver_restarts(step);
     SavedState saved;
@@ -286,7 +219,7 @@ class Run {
     saved.time = step * case_.run.delta_t;
     saved.coupled_solver = case_.coupled_solver->describe();
     case_.coupled_solver->save_state(saved.state);
-    write_state_file(case_.state_file(), saved);
+    write_state_file(case_.files.state(), saved);
     state_saved_ = true;
   }
 
@@ -302,10 +235,6 @@ class Run {
     stop([&] { case_.coupled_solver->finalize(); });  // its own solvers (a surrogate's)
   }
 
-  std::filesystem::path results_path(const std::string& extension) const {
-    return case_.results_directory / (case_.results_name + extension);
-  }
-
   /// Results that cannot be written (a disk that filled up, a directory that went away) end
   /// the run as failed, with the reason; never an exception out of the run.
   void note_write_failure(RunOutcome& outcome, const std::exception& error) const {
@@ -317,66 +246,70 @@ class Run {
     outcome.reason = "the results could not be written";
   }
 
+  /// Every output closed with how the run ended (in order: the summary, last, also records a
+  /// failure of the others), then the run's last lines.
   void finish(RunOutcome& outcome) {
-    const double wall = std::chrono::duration<double>(Clock::now() - start_).count();
-    const auto& solver_times = case_.coupled_solver->solver_time_total();
-    const double own_solvers = case_.coupled_solver->own_solvers_time_total();
-    const double coupler = wall - solver_times[0] - solver_times[1] - own_solvers;
-    try {
-      const CoupledSolver& coupled = *case_.coupled_solver;
-      if (writer_ && coupled.unfinished_step() > 0)
-        writer_->write_unfinished_step(coupled.unfinished_step(),
-                                       coupled.unfinished_step() * case_.run.delta_t,
-                                       coupled.unfinished_residuals());
-      if (writer_) writer_->close(to_string(outcome.status), outcome.message);
-    } catch (const std::exception& e) {
-      note_write_failure(outcome, e);
+    const CoupledSolver& coupled = *case_.coupled_solver;
+    RunEnd end;
+    end.wall_time = std::chrono::duration<double>(Clock::now() - start_).count();
+    const auto& solver_times = coupled.solver_time_total();
+    end.solver_times = {solver_times[0], solver_times[1]};
+    const double own_solvers = coupled.own_solvers_time_total();
+    end.coupler_time = end.wall_time - solver_times[0] - solver_times[1] - own_solvers;
+    end.unfinished_step = coupled.unfinished_step();
+    end.unfinished_time = end.unfinished_step * case_.run.delta_t;
+    end.unfinished_residuals = coupled.unfinished_residuals();
+    // Not opened (the run stopped before its first step): the summary is written all the same.
+    if (std::find(opened_.begin(), opened_.end(), &summary_) == opened_.end())
+      opened_.push_back(&summary_);
+    for (RunOutput* output : opened_) {
+      end.outcome = outcome;
+      try {
+        output->close(end);
+      } catch (const std::exception& e) {
+        note_write_failure(outcome, e);
+      }
     }
-    summary_.finish(outcome, wall, {solver_times[0], solver_times[1]}, coupler);
-    try {
-      summary_.write(results_path(".summary.json"));
-    } catch (const std::exception& e) {
-      note_write_failure(outcome, e);
-    }
+    if (options_.silent) return;  // the caller reports the outcome
+    print_report(outcome, end, own_solvers);
+  }
 
-    const int steps = writer_ ? writer_->steps_written() : 0;
-    if (silent_) return;  // the caller reports the outcome
+  void print_report(const RunOutcome& outcome, const RunEnd& end, double own_solvers) const {
+    const int steps = summary().steps_completed();
     fmt::print("\n{} after {} time step{} in {:.3f} s{}\n", to_string(outcome.status), steps,
-               steps == 1 ? "" : "s", wall, outcome.reason.empty() ? "" : ": " + outcome.reason);
+               steps == 1 ? "" : "s", end.wall_time,
+               outcome.reason.empty() ? "" : ": " + outcome.reason);
     auto line = [](const std::string& label, const std::string& text) {
       fmt::print("  {:<18}: {}\n", label, text);
     };
     for (std::size_t i = 0; i < 2; ++i)
-      line("solver " + case_.solvers[i]->name(), fmt::format("{:.3f} s", solver_times[i]));
+      line("solver " + case_.solvers[i]->name(), fmt::format("{:.3f} s", end.solver_times[i]));
     if (own_solvers > 0.0)
       line("surrogate", fmt::format("{:.3f} s (its solvers and coupling)", own_solvers));
-    line("coupler", fmt::format("{:.3f} s ({:.1f} us per coupling iteration inside the steps)",
-                                coupler, iterations_ ? 1e6 * algorithm_time_ / iterations_ : 0.0));
+    line("coupler",
+         fmt::format("{:.3f} s ({:.1f} us per coupling iteration inside the steps)",
+                     end.coupler_time, iterations_ ? 1e6 * algorithm_time_ / iterations_ : 0.0));
     if (steps > 0)
       line("iterations", fmt::format("{:.2f} per time step on average ({} in all)",
                                      double(iterations_) / steps, iterations_));
-    if (writer_) line("results", writer_->path().string());
-    if (vtk_) line("ParaView", vtk_->collection().string());
-    if (watchpoint_csv_)
-      for (const auto& file : watchpoint_csv_->files()) line("watchpoint", file.string());
-    if (state_saved_) line("solver state", results_path(".state.h5").string());
-    line("summary", results_path(".summary.json").string());
+    for (const RunOutput* output : opened_)
+      if (output != &summary_)
+        for (const auto& [label, file] : output->files()) line(label, file.string());
+    if (state_saved_) line("solver state", case_.files.state().string());
+    line("summary", case_.files.summary().string());
     std::fflush(stdout);  // the error comes last, after the summary, also when piped
     if (!outcome.message.empty()) fmt::print(stderr, "\nerror: {}\n", outcome.message);
   }
 
   Case& case_;
-  RunSummary summary_;
-  std::unique_ptr<ResultsWriter> writer_;
-  std::unique_ptr<VtkSeries> vtk_;
-  std::unique_ptr<VtkSeries> iteration_vtk_;  ///< the chosen step being computed
-  std::unique_ptr<WatchpointCsv> watchpoint_csv_;
+  RunOptions options_;
+  SummaryOutput summary_;
+  ProgressOutput progress_;
+  std::vector<RunOutput*> opened_;  ///< the outputs opened so far, the summary last
   Clock::time_point start_ = Clock::now();
-  bool silent_ = false;
   long iterations_ = 0;
   double algorithm_time_ = 0.0;
   bool state_saved_ = false;
-  int steps_with_warnings_ = 0;
   int current_step_ = 0;  ///< the step being computed; 0 outside the time loop
 };
 
@@ -417,7 +350,7 @@ RunReport run_case(const std::filesystem::path& case_file, const RunOptions& opt
   std::unique_ptr<CaseLock> lock;
   try {
     check_results_files(c);
-    std::vector<std::filesystem::path> lock_files{c.results_directory / (c.results_name + ".lock")};
+    std::vector<std::filesystem::path> lock_files{c.files.lock()};
     for (const auto& directory : c.working_directories)
       lock_files.push_back(directory / ".cocopp.lock");
     lock = std::make_unique<CaseLock>(lock_files);
@@ -428,10 +361,10 @@ RunReport run_case(const std::filesystem::path& case_file, const RunOptions& opt
   std::signal(SIGINT, on_interrupt);
   std::signal(SIGTERM, on_interrupt);
   std::signal(SIGHUP, on_interrupt);
-  Run run(c);
-  report.outcome = run.execute(options);
+  Run run(c, options);
+  report.outcome = run.execute();
   report.summary = run.summary();
-  report.results_file = run.results_file();
+  report.results_file = c.files.results();
   return report;
 }
 

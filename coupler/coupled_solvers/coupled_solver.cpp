@@ -115,7 +115,8 @@ StepRecord CoupledSolver::iterate_step(int step, double time) {
     // formatting it every iteration cost 7 % of the coupler's time on the tube.
     if (iteration_observer_)
       iteration_observer_({step, iteration, record.residual_norms.back(), criterion_->progress(),
-                           seconds_since(step_start_), &r});
+                           seconds_since(step_start_), &scheme_->x().data(), &scheme_->y().data(),
+                           &r});
     if (criterion_->is_satisfied()) {
       on_converged(x, xt, r);
       tolerance_met = criterion_->tolerance_met();
@@ -148,6 +149,8 @@ void CoupledSolver::commit_step(StepRecord& record) {
   record.coupler_time =
       record.wall_time - solver_times[0] - solver_times[1] - own_solvers_time_step_;
   record.surrogate_iterations = own_iterations_;
+  record.x = scheme_->x().data();
+  record.y = scheme_->y().data();
 }
 
 void CoupledSolver::save_solver_restarts(int step) {

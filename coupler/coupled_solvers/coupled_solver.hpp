@@ -27,18 +27,6 @@ namespace cocopp {
 
 class Model;
 
-/// One coupling iteration as it ends, for `cocopp run --verbose`.
-struct IterationReport {
-  int step;
-  int iteration;
-  double residual;        ///< 2-norm of r = x~ - x
-  std::string criterion;  ///< the residual as the criterion measures it (may be empty)
-  double step_seconds;    ///< wall time since the step started
-  /// r itself, in x's layout; valid during the call only. x() is the iteration's input and
-  /// y() the loads it gave.
-  const Eigen::VectorXd* residual_vector = nullptr;
-};
-
 class CoupledSolver {
  public:
   static constexpr const char* kind = "coupled solver";

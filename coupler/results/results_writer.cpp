@@ -393,12 +393,22 @@ void ResultsWriter::create_step_series() {
 
 void ResultsWriter::write_step(const StepRecord& record, const Interface& x, const Interface& y,
                                const Interface& watchpoints) {
+  check_layouts(record, x, y, watchpoints);
+  StepRecord with_values = record;
+  with_values.x = x.data();
+  with_values.y = y.data();
+  with_values.watchpoints = watchpoints.data();
+  write_step(with_values);
+}
+
+void ResultsWriter::write_step(const StepRecord& record) {
   if (!is_open())
     throw std::logic_error("results file '" + path_.string() + "': write_step after close");
-  check_step(record, x, y, watchpoints);
-  kept_.push_back({record, x.data(), y.data(), watchpoints.data()});
-  kept_values_ += static_cast<std::size_t>(x.size() + y.size() + watchpoints.size()) +
-                  record.residual_norms.size();
+  check_step(record);
+  kept_.push_back(record);
+  kept_values_ +=
+      static_cast<std::size_t>(record.x.size() + record.y.size() + record.watchpoints.size()) +
+      record.residual_norms.size();
   const std::chrono::duration<double> since_write = std::chrono::steady_clock::now() - last_write_;
   constexpr std::size_t kMaxKeptValues = 8 << 20;  // 64 MB of doubles
   if (since_write.count() >= write_interval_ || kept_values_ >= kMaxKeptValues) write_kept_steps();
@@ -409,9 +419,9 @@ void ResultsWriter::write_kept_steps() {
   check_space();
   const QuietErrors quiet;
   try {
-    write_interface(x_blocks_, &KeptStep::x);
-    write_interface(y_blocks_, &KeptStep::y);
-    if (!watchpoint_blocks_.empty()) write_interface(watchpoint_blocks_, &KeptStep::watchpoints);
+    write_interface(x_blocks_, &StepRecord::x);
+    write_interface(y_blocks_, &StepRecord::y);
+    if (!watchpoint_blocks_.empty()) write_interface(watchpoint_blocks_, &StepRecord::watchpoints);
     write_residuals();
     write_step_scalars();
     flush();
@@ -419,14 +429,14 @@ void ResultsWriter::write_kept_steps() {
     fail(error);
   }
   rows_ += static_cast<int>(kept_.size());
-  for (const auto& step : kept_) norms_written_ += step.record.residual_norms.size();
+  for (const auto& step : kept_) norms_written_ += step.residual_norms.size();
   kept_.clear();
   kept_values_ = 0;
   last_write_ = std::chrono::steady_clock::now();
 }
 
-void ResultsWriter::check_step(const StepRecord& record, const Interface& x, const Interface& y,
-                               const Interface& watchpoints) const {
+void ResultsWriter::check_layouts(const StepRecord& record, const Interface& x, const Interface& y,
+                                  const Interface& watchpoints) const {
   const auto check_layout = [&](const char* name, const std::vector<BlockSeries>& expected,
                                 const Interface& given) {
     std::vector<Interface::Block> blocks;
@@ -441,6 +451,22 @@ void ResultsWriter::check_step(const StepRecord& record, const Interface& x, con
   check_layout("x", x_blocks_, x);
   check_layout("y", y_blocks_, y);
   if (!watchpoint_blocks_.empty()) check_layout("watchpoints", watchpoint_blocks_, watchpoints);
+}
+
+void ResultsWriter::check_step(const StepRecord& record) const {
+  const auto check_size = [&](const char* name, const std::vector<BlockSeries>& blocks,
+                              const Eigen::VectorXd& values) {
+    Eigen::Index size = 0;
+    for (const auto& b : blocks) size += b.block.points * b.block.components;
+    if (values.size() != size)
+      throw std::invalid_argument("results file '" + path_.string() + "': step " +
+                                  std::to_string(record.step) + " has " +
+                                  std::to_string(values.size()) + " values of " + name +
+                                  ", the file was created for " + std::to_string(size));
+  };
+  check_size("x", x_blocks_, record.x);
+  check_size("y", y_blocks_, record.y);
+  check_size("the watchpoints", watchpoint_blocks_, record.watchpoints);
   if (record.solver_times.size() != solver_count_)
     throw std::invalid_argument(
         "results file '" + path_.string() + "': step " + std::to_string(record.step) + " has " +
@@ -458,7 +484,7 @@ void ResultsWriter::check_space() const {
   const std::uint64_t available = std::uint64_t(disk.f_bavail) * disk.f_frsize;
   // Chunks may be allocated whole, and metadata grows with them: a generous multiple.
   const std::uint64_t needed = 4 * 8 * (kept_values_ + 16 * kept_.size()) + kClosingReserveBytes;
-  const int first = kept_.front().record.step, last = kept_.back().record.step;
+  const int first = kept_.front().step, last = kept_.back().step;
   const std::string steps = first == last
                                 ? "step " + std::to_string(first)
                                 : "steps " + std::to_string(first) + " to " + std::to_string(last);
@@ -471,10 +497,10 @@ void ResultsWriter::check_space() const {
 }
 
 void ResultsWriter::write_interface(const std::vector<BlockSeries>& blocks,
-                                    Eigen::VectorXd KeptStep::*interface) {
+                                    Eigen::VectorXd StepRecord::*interface) {
   for (const auto& b : blocks) {
     const auto size = static_cast<std::size_t>(b.block.points * b.block.components);
-    write_kept<double>(b.series, H5T_NATIVE_DOUBLE, size, [&](const KeptStep& step) {
+    write_kept<double>(b.series, H5T_NATIVE_DOUBLE, size, [&](const StepRecord& step) {
       return (step.*interface).data() + b.block.offset;
     });
   }
@@ -485,7 +511,7 @@ void ResultsWriter::write_residuals() {
   std::int64_t offset = static_cast<std::int64_t>(norms_written_);
   std::vector<std::int64_t> offsets, counts;
   for (const auto& step : kept_) {
-    const auto& step_norms = step.record.residual_norms;
+    const auto& step_norms = step.residual_norms;
     norms.insert(norms.end(), step_norms.begin(), step_norms.end());
     offsets.push_back(offset);
     counts.push_back(static_cast<std::int64_t>(step_norms.size()));
@@ -500,9 +526,9 @@ void ResultsWriter::write_residuals() {
 void ResultsWriter::write_step_scalars() {
   const H5Handle boolean = bool_type();
   std::vector<std::int8_t> converged;
-  for (const auto& step : kept_) converged.push_back(step.record.converged ? 1 : 0);
+  for (const auto& step : kept_) converged.push_back(step.converged ? 1 : 0);
   const auto of = [](auto member) {
-    return [member](const KeptStep& step) { return &(step.record.*member); };
+    return [member](const StepRecord& step) { return &(step.*member); };
   };
   write_kept<double>(steps_.time, H5T_NATIVE_DOUBLE, 1, of(&StepRecord::time));
   write_kept<int>(steps_.iterations, H5T_NATIVE_INT, 1, of(&StepRecord::iterations));
@@ -510,7 +536,7 @@ void ResultsWriter::write_step_scalars() {
   write_kept<double>(steps_.wall_time, H5T_NATIVE_DOUBLE, 1, of(&StepRecord::wall_time));
   write_kept<double>(steps_.coupler_time, H5T_NATIVE_DOUBLE, 1, of(&StepRecord::coupler_time));
   write_kept<double>(steps_.solver_times, H5T_NATIVE_DOUBLE, solver_count_,
-                     [](const KeptStep& step) { return step.record.solver_times.data(); });
+                     [](const StepRecord& step) { return step.solver_times.data(); });
   // Last, so that the length of steps/step counts the rows that are complete everywhere.
   write_kept<int>(steps_.step, H5T_NATIVE_INT, 1, of(&StepRecord::step));
 }

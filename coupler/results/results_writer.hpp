@@ -39,12 +39,14 @@ class ResultsWriter {
   ResultsWriter(const ResultsWriter&) = delete;
   ResultsWriter& operator=(const ResultsWriter&) = delete;
 
-  /// Appends one step: writes it and flushes the file, together with the steps kept before it,
-  /// once the write interval has passed since the last write (at once with interval 0). x and y
-  /// must have the layout given at construction and record.solver_times one entry per solver
-  /// (std::invalid_argument otherwise; nothing is kept then), and so must `watchpoints` where
-  /// the file has watchpoints. If writing fails half-way, the next write overwrites the partial
-  /// rows.
+  /// Appends one step, its values in record.x, .y and .watchpoints: writes it and flushes the
+  /// file, together with the steps kept before it, once the write interval has passed since
+  /// the last write (at once with interval 0). The values must have the sizes of the layouts
+  /// given at construction and record.solver_times one entry per solver
+  /// (std::invalid_argument otherwise; nothing is kept then). If writing fails half-way, the
+  /// next write overwrites the partial rows.
+  void write_step(const StepRecord& record);
+  /// The same with the values in interfaces, whose layouts must be the file's.
   void write_step(const StepRecord& record, const Interface& x, const Interface& y,
                   const Interface& watchpoints = {});
   /// Keep steps in memory until `seconds` of wall time have passed since the last write (or
@@ -98,19 +100,15 @@ class ResultsWriter {
   void create_step_series();
   static Series create_series(hid_t group, const char* name, hid_t file_type,
                               std::vector<hsize_t> row_shape, const char* unit);
-  void check_step(const StepRecord& record, const Interface& x, const Interface& y,
-                  const Interface& watchpoints) const;
+  void check_layouts(const StepRecord& record, const Interface& x, const Interface& y,
+                     const Interface& watchpoints) const;
+  void check_step(const StepRecord& record) const;
   /// Throws std::runtime_error if the disk has no clear room for the kept steps (see the .cpp).
   void check_space() const;
   /// Room kept for closing the file (attributes, metadata flushed at close).
   static constexpr std::uint64_t kClosingReserveBytes = 256 * 1024;
-  /// A step given to write_step() and not yet in the file.
-  struct KeptStep {
-    StepRecord record;
-    Eigen::VectorXd x, y, watchpoints;
-  };
   void write_interface(const std::vector<BlockSeries>& blocks,
-                       Eigen::VectorXd KeptStep::*interface);
+                       Eigen::VectorXd StepRecord::*interface);
   void write_residuals();
   void write_step_scalars();
   /// One value (of `row_size` elements) per kept step, from `value`, as rows rows_, ... .
@@ -128,7 +126,7 @@ class ResultsWriter {
   int rows_ = 0;         ///< rows in the file's per-step datasets
   int rows_before_ = 0;  ///< of them, written by the run this one continues
   hsize_t norms_written_ = 0;
-  std::vector<KeptStep> kept_;
+  std::vector<StepRecord> kept_;  ///< steps given to write_step() and not yet in the file
   std::size_t kept_values_ = 0;
   double write_interval_ = 0.0;  ///< s
   std::chrono::steady_clock::time_point last_write_ = std::chrono::steady_clock::now();

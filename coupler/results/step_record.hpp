@@ -1,7 +1,9 @@
 #pragma once
-// What the results writers (ResultsWriter: HDF5, RunSummary: JSON) are told about a run: a
-// description known at the start and one record per finished time step. Plain data, so the
-// coupled solvers fill them without depending on any file format.
+// What a run's outputs (coupler/outputs: the HDF5 results, the summary, ParaView, ...) are told
+// about it: a description known at the start, one record per finished time step and, for those
+// that ask, one per coupling iteration. Plain data, so the coupled solvers fill them without
+// depending on any file format.
+#include <Eigen/Core>
 #include <string>
 #include <vector>
 
@@ -39,6 +41,24 @@ struct StepRecord {
   /// Degenerate situations the coupled solver handled and went on (a repeated residual, more
   /// secant columns than unknowns), each once with a count: "... (3 times)".
   std::vector<std::string> warnings;
+  /// The step's solution: x (displacement) and y (loads) in the layouts the outputs were
+  /// opened with, and the watchpoints' values there (empty without watchpoints).
+  Eigen::VectorXd x, y, watchpoints;
+};
+
+/// One coupling iteration as it ends, for `cocopp run --verbose` and the outputs that write
+/// iterations.
+struct IterationReport {
+  int step;
+  int iteration;
+  double residual;        ///< 2-norm of r = x~ - x
+  std::string criterion;  ///< the residual as the criterion measures it (may be empty)
+  double step_seconds;    ///< wall time since the step started
+  /// The iteration's input x, the loads y it gave and its residual r, in x's and y's layouts;
+  /// valid during the call only.
+  const Eigen::VectorXd* x = nullptr;
+  const Eigen::VectorXd* y = nullptr;
+  const Eigen::VectorXd* residual_vector = nullptr;
 };
 
 }  // namespace cocopp

@@ -40,12 +40,12 @@ std::string kept_lines(const std::filesystem::path& path, const std::string& hea
 
 }  // namespace
 
-WatchpointCsv::WatchpointCsv(const std::filesystem::path& directory, const std::string& name,
-                             const Interface& layout, int continue_after_step) {
-  std::filesystem::create_directories(directory);
+WatchpointCsv::WatchpointCsv(const RunFiles& files, const Interface& layout,
+                             int continue_after_step) {
+  std::filesystem::create_directories(files.directory);
   for (const auto& part : layout.parts()) {
     const std::string& watchpoint = part.model_part->name;
-    const auto path = directory / (name + "_watchpoint_" + watchpoint + ".csv");
+    const auto path = files.watchpoint_csv(watchpoint);
     const std::string header_line = header(layout, watchpoint);
     const std::string start = continue_after_step >= 0
                                   ? kept_lines(path, header_line, continue_after_step)

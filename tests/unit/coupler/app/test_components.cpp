@@ -26,11 +26,11 @@ bool contains(const std::vector<std::string>& names, const std::string& name) {
 TEST(Components, EveryKindACaseCanNameIsListed) {
   const auto kinds = listed();
   for (const char* kind : {"coupled solvers", "models", "predictors", "convergence criteria",
-                           "solver wrappers", "interpolators", "transformers"}) {
+                           "solver wrappers", "interpolators", "transformers", "outputs"}) {
     ASSERT_TRUE(kinds.count(kind)) << kind;
     EXPECT_FALSE(kinds.at(kind).empty()) << kind;
   }
-  EXPECT_EQ(kinds.size(), 7u);
+  EXPECT_EQ(kinds.size(), 8u);
 }
 
 TEST(Components, EveryTypeIsRegistered) {
@@ -46,6 +46,7 @@ TEST(Components, EveryTypeIsRegistered) {
       {"transformers",
        {"axisymmetric_2d_to_3d", "axisymmetric_3d_to_2d", "depth_2d_to_3d", "depth_3d_to_2d",
         "permutation"}},
+      {"outputs", {"hdf5", "paraview", "paraview_iterations", "watchpoint_csv"}},
   };
   const auto kinds = listed();
   for (const auto& [kind, names] : expected)

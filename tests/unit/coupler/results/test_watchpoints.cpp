@@ -133,7 +133,7 @@ TEST(WatchpointCsv, OneFilePerWatchpointWithAHeaderAndARowPerStep) {
       "    - {name: b, model_part: inlet, coordinates: [0.005, 0, 0]}\n");
   auto fields = linear_fields();
   watchpoints.attach(fields.x, fields.y);
-  WatchpointCsv csv(directory.path() / "results", "case", watchpoints.layout());
+  WatchpointCsv csv(RunFiles{directory.path() / "results", "case"}, watchpoints.layout());
   ASSERT_EQ(csv.files().size(), 2u);
   EXPECT_EQ(csv.files()[0], directory.path() / "results" / "case_watchpoint_a.csv");
   csv.write_step(1, 0.01, watchpoints.sample(fields.x, fields.y));
@@ -155,11 +155,11 @@ TEST(WatchpointCsv, ARestartKeepsTheRowsUpToItsStep) {
   auto fields = linear_fields();
   watchpoints.attach(fields.x, fields.y);
   {
-    WatchpointCsv csv(directory.path(), "case", watchpoints.layout());
+    WatchpointCsv csv(RunFiles{directory.path(), "case"}, watchpoints.layout());
     for (int step = 1; step <= 4; ++step)
       csv.write_step(step, 0.01 * step, watchpoints.sample(fields.x, fields.y));
   }
-  WatchpointCsv continued(directory.path(), "case", watchpoints.layout(), 2);
+  WatchpointCsv continued(RunFiles{directory.path(), "case"}, watchpoints.layout(), 2);
   continued.write_step(3, 0.03, watchpoints.sample(fields.x, fields.y));
   EXPECT_EQ(read_file(continued.files()[0]),
             "step,time,displacement_x,displacement_y,displacement_z,pressure\n"
@@ -167,8 +167,9 @@ TEST(WatchpointCsv, ARestartKeepsTheRowsUpToItsStep) {
 
   auto other = read("    - {name: a, model_part: wall, coordinates: [0.005, 0, 0]}\n");
   other.attach(fields.x, fields.y);
-  const std::string message = testing::error_message<std::exception>(
-      [&] { WatchpointCsv(directory.path(), "case", other.layout(), 2); });
+  const std::string message = testing::error_message<std::exception>([&] {
+    WatchpointCsv(RunFiles{directory.path(), "case"}, other.layout(), 2);
+  });
   EXPECT_NE(message.find("was the case changed?"), std::string::npos) << message;
 }
 
