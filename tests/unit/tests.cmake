@@ -5,7 +5,8 @@ cocopp_unit_test(core/protocol SOURCES test_frame.cpp test_messages.cpp test_tra
                  LIBS cocopp_protocol)
 cocopp_unit_test(core/case SOURCES test_settings.cpp test_registry.cpp test_path_problem.cpp
                  LIBS cocopp_core)
-cocopp_unit_test(core/data SOURCES test_restart_file.cpp test_calculix_interface_file.cpp
+cocopp_unit_test(core/data
+                 SOURCES test_interface.cpp test_restart_file.cpp test_calculix_interface_file.cpp
                  LIBS cocopp_core)
 
 # mappers
