@@ -1,7 +1,6 @@
 // Restart files (named arrays as hex floats, the tube solvers' and the calculix wrapper's): exact
 // round trips and errors that name the file.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -9,24 +8,20 @@
 
 #include "core/data/restart_file.hpp"
 #include "tests/support/error_message.hpp"
+#include "tests/support/temporary_directory.hpp"
 
 namespace cocopp {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path test_file(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("cocopp_restart_file_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
-}
+using cocopp::testing::TemporaryDirectory;
 
 TEST(RestartFile, HoldsEveryDoubleExactly) {
   Eigen::VectorXd values(7);
   values << 1.0 / 3.0, -0.0, std::numeric_limits<double>::denorm_min(),
       std::numeric_limits<double>::max(), -1.2345678901234567e-300, std::nextafter(1.0, 2.0), 0.1;
-  const fs::path file = test_file("exact.restart");
+  const TemporaryDirectory directory;
+  const fs::path file = directory / "exact.restart";
   write_restart_file(file, "tube_flow", 12, {{"a", values}, {"empty", Eigen::VectorXd()}});
   const RestartData data = read_restart_file(file, "tube_flow", 12);
   ASSERT_EQ(data.at("a").size(), values.size());
@@ -41,7 +36,8 @@ TEST(RestartFile, HoldsEveryDoubleExactly) {
 
 TEST(RestartFile, ErrorsNameTheFileAndWhatIsWrong) {
   using cocopp::testing::error_message;
-  const fs::path file = test_file("errors.restart");
+  const TemporaryDirectory directory;
+  const fs::path file = directory / "errors.restart";
   const auto read_error = [&](const std::string& solver, int step) {
     return error_message<std::runtime_error>([&] { read_restart_file(file, solver, step); });
   };

@@ -1,24 +1,18 @@
 // The tube models continue bit for bit from their restart data.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
 
 #include "core/data/restart_file.hpp"
+#include "tests/support/temporary_directory.hpp"
 #include "tests/unit/solvers/tube/tube_test_parameters.hpp"
 
 namespace cocopp::tube {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path test_file(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("cocopp_restart_file_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
-}
+using cocopp::testing::TemporaryDirectory;
 
 // A model restored from the restart data of step 5 continues as the model that never stopped.
 template <class Model, class Input>
@@ -28,7 +22,8 @@ void expect_continues_exactly(Model& uninterrupted, Model& restarted, Input inpu
     uninterrupted.solve(input(step));
     uninterrupted.finalize_step();
   }
-  const fs::path file = test_file("model.restart");
+  const TemporaryDirectory directory;
+  const fs::path file = directory / "model.restart";
   write_restart_file(file, "model", 5, uninterrupted.restart_data());
   restarted.restore(read_restart_file(file, "model", 5), file);
   for (int step = 6; step <= 10; ++step) {
