@@ -30,7 +30,7 @@ const std::vector<std::string>& DisplacementDrive::face_variables() {
   return variables;
 }
 
-DisplacementDrive::DisplacementDrive(const InputDeck& deck, const InterfaceLoads& loads,
+DisplacementDrive::DisplacementDrive(const InputDeck& deck, InterfaceLoads& loads,
                                      std::vector<std::int64_t> interface_nodes,
                                      std::vector<std::int64_t> drivable_nodes, int dof,
                                      double surface_stiffness)
@@ -78,7 +78,7 @@ Eigen::Vector3d DisplacementDrive::direction(std::int64_t node) const {
   return Eigen::Vector3d::Unit(dof_ - 1);
 }
 
-void DisplacementDrive::plan(const Inputs& inputs) {
+void DisplacementDrive::plan(const Inputs& inputs, const NodeDisplacements& converged) {
   const auto faces = static_cast<Eigen::Index>(loads_.faces().size());
   if (inputs.pressure.size() != faces || inputs.gap.size() != faces ||
       inputs.coverage.size() != faces || inputs.traction.rows() != faces ||
@@ -87,7 +87,6 @@ void DisplacementDrive::plan(const Inputs& inputs) {
         "DisplacementDrive::plan: one value per interface face and one wall displacement per "
         "drivable node expected");
   inputs_ = inputs;
-  film_forces_ = loads_.nodal_forces(inputs_.traction, inputs_.pressure);
   driven_face_.assign(loads_.faces().size(), false);
   for (Eigen::Index f = 0; f < faces; ++f)
     driven_face_[static_cast<std::size_t>(f)] =
@@ -107,6 +106,20 @@ void DisplacementDrive::plan(const Inputs& inputs) {
     prescribed_[node] =
         inputs.wall_displacement.row(static_cast<Eigen::Index>(k)).dot(direction(node).transpose());
   }
+  // The faces where this iteration puts them, in a step with NLGEOM: the other solver
+  // computed its loads on its wall there. (Without, ccx takes loads on the deck's geometry.)
+  if (deck_.nonlinear_geometry()) move_faces(converged);
+  film_forces_ = loads_.nodal_forces(inputs_.traction, inputs_.pressure);
+}
+
+void DisplacementDrive::move_faces(const NodeDisplacements& converged) {
+  NodeDisplacements position = converged;
+  for (const auto& [node, value] : prescribed_) {
+    const Eigen::Vector3d e = direction(node);
+    Eigen::Vector3d& u = position.try_emplace(node, Eigen::Vector3d::Zero()).first->second;
+    u += (value - u.dot(e)) * e;
+  }
+  loads_.move_faces(position);
 }
 
 void DisplacementDrive::write(std::ostream& out) const {

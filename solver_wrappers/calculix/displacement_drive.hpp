@@ -49,7 +49,7 @@ class DisplacementDrive {
   /// system if it has one); `surface_stiffness`: the structure's stiffness per area against a
   /// push of its surface (Pa/m). Throws DeckError for decks it cannot drive (axisymmetric
   /// elements on the interface, *BOUNDARY inside the step).
-  DisplacementDrive(const InputDeck& deck, const InterfaceLoads& loads,
+  DisplacementDrive(const InputDeck& deck, InterfaceLoads& loads,
                     std::vector<std::int64_t> interface_nodes,
                     std::vector<std::int64_t> drivable_nodes, int dof, double surface_stiffness);
 
@@ -62,7 +62,14 @@ class DisplacementDrive {
     Eigen::VectorXd coverage;
     RowMatrix wall_displacement;
   };
-  void plan(const Inputs& inputs);
+  /// Choose the driven nodes and their values, then, in an NLGEOM step, take the faces where
+  /// this iteration puts them: `converged`, the surface nodes' displacement at the last
+  /// converged step (global; every face node, both sides of a sector), with each driven
+  /// node's driven direction at its prescribed value. The other solver's loads become nodal
+  /// forces on those faces, as it computed them on its wall at this iteration's position: a
+  /// face left as an earlier step left it, or with one side of a sector moved, takes a force
+  /// the other solver never gave.
+  void plan(const Inputs& inputs, const NodeDisplacements& converged);
   /// The step's loads file: boundary cards, then the loads (see the header comment).
   void write(std::ostream& out) const;
   /// The interface nodes' displacement to return (one row per interface node, global):
@@ -74,8 +81,13 @@ class DisplacementDrive {
   bool drives(std::int64_t node) const { return prescribed_.count(node) != 0; }
   /// The largest force imbalance per area of the last balance() (Pa), for messages.
   double largest_imbalance() const { return largest_imbalance_; }
+  /// The other solver's loads as plan() made them nodal forces (global), driven directions
+  /// included: what the structure takes at the coupling's fixed point.
+  const std::map<std::int64_t, Eigen::Vector3d>& film_forces() const { return film_forces_; }
 
  private:
+  /// The faces at `converged` with the driven nodes at their prescribed values (plan()).
+  void move_faces(const NodeDisplacements& converged);
   /// The driven direction at a node, global.
   Eigen::Vector3d direction(std::int64_t node) const;
   /// The force a unit traction on `face` gives `node` (its shape function's integral there).
@@ -96,7 +108,7 @@ class DisplacementDrive {
   std::vector<std::string> model_boundary_cards(const InputDeck& deck) const;
 
   const InputDeck& deck_;
-  const InterfaceLoads& loads_;
+  InterfaceLoads& loads_;  ///< moved to each iteration's position by plan()
   std::vector<std::int64_t> interface_nodes_, drivable_nodes_;
   int dof_;
   double surface_stiffness_;

@@ -169,7 +169,7 @@ void PerIterationCcx::solve(const Interface& input, Interface& output) {
   timing_.wrapper_seconds = prepare_seconds + seconds_since(read_start);
 }
 
-void PerIterationCcx::read_output(Interface& output) const {
+void PerIterationCcx::read_output(Interface& output) {
   const std::filesystem::path results = model_.file(std::string(kJob) + ".dat");
   const RowMatrix displacement =
       read_node_print(results, "displacements", model_.node_set_name, model_.interface_nodes);
@@ -177,6 +177,8 @@ void PerIterationCcx::read_output(Interface& output) const {
     output.values(model_.node_set_name, "displacement") = displacement;
     return;
   }
+  surface_displacement_ =
+      read_node_print(results, "displacements", drive_.node_set_name, drive_.nodes);
   output.values(model_.node_set_name, "displacement") = drive_.drive->balance(
       displacement, read_node_print(results, "forces", drive_.node_set_name, drive_.nodes));
   auto driven = output.values(model_.node_set_name, "driven");
@@ -203,7 +205,7 @@ void PerIterationCcx::write_loads(const Interface& input) const {
         fmt::format("solver '{}' at {}: the gap, wall displacement or coverage contain NaN or "
                     "infinity",
                     model_.name, model_.position()));
-  drive_.drive->plan(inputs);
+  drive_.drive->plan(inputs, converged_surface_);
   std::ofstream out(loads_file);
   out << "** Interface loads of this coupling iteration, written by cocopp\n";
   drive_.drive->write(out);
@@ -244,7 +246,8 @@ void PerIterationCcx::write_step(std::ofstream& out, const std::string& loads_fi
   if (print) out << "*NODE PRINT, NSET=" << model_.node_set_name << ", GLOBAL=YES\nU\n";
   // The forces the driven nodes take, in their own systems (the driven direction's).
   if (print && drive_.drive)
-    out << "*NODE PRINT, NSET=" << drive_.node_set_name << ", GLOBAL=NO\nRF\n";
+    out << "*NODE PRINT, NSET=" << drive_.node_set_name << ", GLOBAL=NO\nRF\n"
+        << "*NODE PRINT, NSET=" << drive_.node_set_name << ", GLOBAL=YES\nU\n";
   out << step.back().text << "\n";
 }
 
@@ -289,8 +292,16 @@ void PerIterationCcx::run_ccx() {
                           result.details.empty() ? "(the log is empty)" : result.details));
 }
 
+void PerIterationCcx::commit_surface_displacement() {
+  converged_surface_.clear();
+  for (std::size_t i = 0; i < drive_.nodes.size(); ++i)
+    converged_surface_[drive_.nodes[i]] =
+        surface_displacement_.row(static_cast<Eigen::Index>(i)).transpose();
+}
+
 void PerIterationCcx::finalize_step() {
   // The last iteration is the converged one: its end state is the next step's start.
+  if (drive_.drive) commit_surface_displacement();
   if (state_reset_ == StateReset::kReplay) {
     const std::string loads = fmt::format("cocopp_loads_step{:05d}.inp", model_.step);
     std::filesystem::copy_file(model_.file(kLoadsFile), model_.file(loads),
@@ -325,8 +336,13 @@ void PerIterationCcx::output_step() {
 // working directory anyway.
 void PerIterationCcx::save_restart(int step, const Interface& output) {
   const RowMatrix u = output.values(model_.node_set_name, "displacement");
+  RestartData data = {{"displacement", Eigen::Map<const Eigen::VectorXd>(u.data(), u.size())}};
+  // Driven by displacement: where the next step's faces start (every surface node's).
+  if (drive_.drive)
+    data["surface_displacement"] = Eigen::Map<const Eigen::VectorXd>(surface_displacement_.data(),
+                                                                     surface_displacement_.size());
   write_restart_file(model_.file(restart_file_name(model_.name, step).string()), model_.name, step,
-                     {{"displacement", Eigen::Map<const Eigen::VectorXd>(u.data(), u.size())}});
+                     data);
   if (state_reset_ == StateReset::kRestart && has_converged_restart_)
     std::filesystem::copy_file(model_.file(kConvergedRestart), saved_restart(step),
                                std::filesystem::copy_options::overwrite_existing);
@@ -337,9 +353,16 @@ void PerIterationCcx::restore(int step, Interface& output) {
       model_.file(restart_file_name(model_.name, step).string());
   auto u = output.values(model_.node_set_name, "displacement");
   try {
-    const Eigen::VectorXd saved = restart_array(read_restart_file(data_file, model_.name, step),
-                                                "displacement", u.size(), data_file);
+    const RestartData data = read_restart_file(data_file, model_.name, step);
+    const Eigen::VectorXd saved = restart_array(data, "displacement", u.size(), data_file);
     u = Eigen::Map<const RowMatrix>(saved.data(), u.rows(), u.cols());
+    if (drive_.drive) {
+      const auto rows = static_cast<Eigen::Index>(drive_.nodes.size());
+      const Eigen::VectorXd surface =
+          restart_array(data, "surface_displacement", 3 * rows, data_file);
+      surface_displacement_ = Eigen::Map<const RowMatrix>(surface.data(), rows, 3);
+      commit_surface_displacement();
+    }
   } catch (const std::runtime_error& e) {
     model_.fail(fmt::format("solver '{}' cannot restart after time step {}: {}", model_.name, step,
                             e.what()));

@@ -84,9 +84,10 @@ class PerIterationCcx : public CcxMode {
   void write_iteration_deck() const;
   void write_step(std::ofstream& out, const std::string& loads_file, bool print) const;
   void run_ccx();
-  void read_output(Interface& output) const;
+  void read_output(Interface& output);
   /// A restarted run: the state save_restart(step) kept.
   void restore(int step, Interface& output);
+  void commit_surface_displacement();
   std::filesystem::path saved_restart(int step) const;
 
   CalculixModel& model_;
@@ -97,6 +98,11 @@ class PerIterationCcx : public CcxMode {
   bool has_converged_restart_ = false;        ///< restart: a committed step to restart from
   std::vector<std::string> committed_loads_;  ///< replay: each committed step's loads file
   std::optional<double> carried_increment_;
+  /// interface_drive: displacement: every drivable node's displacement (global, rows as
+  /// drive_.nodes) at the last iteration, and as a map at the last converged step: where the
+  /// next iteration's faces start (DisplacementDrive::plan).
+  RowMatrix surface_displacement_;
+  NodeDisplacements converged_surface_;
 };
 
 }  // namespace cocopp::calculix

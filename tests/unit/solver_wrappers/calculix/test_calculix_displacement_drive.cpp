@@ -69,6 +69,7 @@ Eigen::VectorXd solve_radial(CalculixCase& test, const Interface& input) {
 }
 
 const auto kEveryFace = [](Eigen::Index) { return true; };
+const auto kFirstTwoFaces = [](Eigen::Index face) { return face < 2; };
 
 TEST(CalculixDisplacementDrive, DrivenAtTheLoadedSolutionStaysThere) {
   CalculixCase test;
@@ -146,6 +147,36 @@ TEST(CalculixDisplacementDrive, NodesLeaveTheDrivenSetInTheNextStep) {
   for (Eigen::Index i = 0; i < radial.size(); ++i)
     EXPECT_NEAR(radial[i], u, 2e-4 * u) << "node " << test.nodes().ids[i];
   EXPECT_LT(displacement.col(2).cwiseAbs().maxCoeff(), 1e-6 * u);
+}
+
+// NLGEOM: the loads act on the faces where the wall puts them, both sides of the sector moved
+// from the last converged step (the loaded nodes of the uncovered face stay there). A run
+// restarted after step 2 takes them from the restart data and continues as the uninterrupted
+// run (to the .dat file's 7 digits, which the faces are read with).
+TEST(CalculixDisplacementDrive, ARestartedDrivenRunContinuesAsTheUninterruptedOne) {
+  SectorCylinder model = cylinder();
+  model.nlgeom = true;
+  const double u = bore_displacement();
+  const std::vector<double> walls = {1.5 * u, 0.5 * u, 1.2 * u};
+  CalculixCase test;
+  test.create(model.deck(), drive_keys() + "mode: per_iteration\n");
+  test.wrapper().initialize();
+  Eigen::VectorXd uninterrupted;
+  for (int n = 1; n <= 3; ++n) {
+    test.wrapper().initialize_step(n, n);
+    uninterrupted = solve_radial(test, drive_inputs(test, walls[n - 1], kFirstTwoFaces));
+    test.wrapper().finalize_step();
+    if (n == 2) test.wrapper().save_restart(2);
+  }
+  test.wrapper().finalize();
+  test.run().timestep_start = 2;
+  test.create(model.deck(), drive_keys() + "mode: per_iteration\n");
+  test.wrapper().initialize();
+  test.wrapper().initialize_step(3, 3);
+  const Eigen::VectorXd restarted =
+      solve_radial(test, drive_inputs(test, walls[2], kFirstTwoFaces));
+  EXPECT_LE(max_abs(restarted - uninterrupted), 1e-6 * max_abs(uninterrupted));
+  EXPECT_GT(max_abs(restarted), 0.3 * u);
 }
 
 TEST(CalculixDisplacementDrive, RefusesAnAxisymmetricModel) {
