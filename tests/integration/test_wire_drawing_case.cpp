@@ -160,8 +160,8 @@ TEST(WireDrawingCase, CoarseShortRunCouplesFilmAndWire) {
 // within the bands below (measured 5.67 on average, at most 9), the film at the die's approach end
 // is where Wilson and Walowit's inlet estimate puts it (measured 1.30 of it), the wire is in axial
 // equilibrium with the loads ccx took (as nodal forces and the drive's reactions), the film's
-// radial and axial loads reach the wire, and the stresses stay below the yield surface (0.90 of it: the
-// coarse wire has not yielded by step 12).
+// radial and axial loads reach the wire, and the stresses stay below the yield surface (0.90 of it:
+// the coarse wire has not yielded by step 12).
 TEST(WireDrawingCase, TheCaseAsShippedRunsCoarse) {
   testing::TemporaryDirectory directory;
   const auto iterations =
@@ -177,7 +177,7 @@ TEST(WireDrawingCase, TheCaseAsShippedRunsCoarse) {
   // ccx's reaction at the exit end against the back force and the loads it took (measured
   // 7.9e-5).
   EXPECT_LT(std::abs(number("force_balance_error")), 1e-3);
-    // The film's pressure reaches the wire as the drive's reactions, balanced to what the
+  // The film's pressure reaches the wire as the drive's reactions, balanced to what the
   // coupling's 0.01 um leaves: the wire's surface stiffness (6e15 Pa/m) times that is 62 MPa
   // against film pressures of 100-500 MPa (measured 5.5e-3).
   EXPECT_LT(std::abs(number("transfer_error_radial")), 2e-2);
