@@ -352,7 +352,7 @@ void CalculixSolverWrapper::finalize_step() {
   if (model_.iteration == 0)
     model_.fail(fmt::format("solver '{}': time step {} is committed without a coupling iteration",
                             model_.name, model_.step));
-    // Driven by displacement, the drive moves the faces to every iteration's surface itself.
+  // Driven by displacement, the drive moves the faces to every iteration's surface itself.
   if (!drive_) model_.move_faces_with(output_interface_);
   mode_->finalize_step();
 }
