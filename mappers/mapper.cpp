@@ -2,6 +2,9 @@
 
 #include <stdexcept>
 
+#include "core/case/suggest.hpp"
+#include "core/protocol/variable_components.hpp"
+
 namespace cocopp {
 
 namespace {
@@ -17,23 +20,48 @@ Eigen::RowVector3d read_mask(const Settings& settings) {
   return mask;
 }
 
+std::vector<std::string> variable_names() {
+  std::vector<std::string> names;
+  for (const auto& definition : protocol::variable_definitions()) names.push_back(definition.name);
+  return names;
+}
+
 }  // namespace
 
-Mapper::Mapper(const Settings& settings)
-    : interpolator_(InterpolatorRegistry::instance().create(settings)),
-      conservative_(settings.get<bool>("conservative", false)),
-      mask_(read_mask(settings)) {
+Mapper::Mapper(const Settings& settings) : mask_(read_mask(settings)) {
+  if (settings.has("conservative") && settings.node()["conservative"].IsSequence()) {
+    for (const auto& variable : settings.get<std::vector<std::string>>("conservative", {})) {
+      if (protocol::variable_components(variable) == 0)
+        settings.fail("conservative", "'" + variable + "' is not an interface variable" +
+                                          did_you_mean(variable, variable_names()));
+      conservative_variables_.insert(variable);
+    }
+  } else {
+    all_conservative_ = settings.get<bool>("conservative", false);
+  }
+  const bool any_conservative = all_conservative_ || !conservative_variables_.empty();
+  conservative_scale_ = settings.get<double>("conservative_scale", 1.0);
+  if (settings.has("conservative_scale") && !any_conservative)
+    settings.fail("conservative_scale",
+                  "scales what is mapped conservatively, and nothing is: give `conservative`");
+  if (!(conservative_scale_ > 0.0))
+    settings.fail("conservative_scale", "must be positive (the target's share of the source)");
+  if (!all_conservative_) consistent_ = InterpolatorRegistry::instance().create(settings);
+  if (any_conservative) conservative_ = InterpolatorRegistry::instance().create(settings);
   if (settings.has("transformers")) {
     for (const auto& entry : settings.list("transformers")) {
       auto transformer = TransformerRegistry::instance().create(entry);
+      if (any_conservative && !transformer->keeps_totals())
+        settings.fail("conservative",
+                      "conservative mapping through the transformer '" +
+                          entry.get<std::string>("type", "") +
+                          "' is not supported: only one that keeps each point one point "
+                          "(permutation) keeps totals; map forces as tractions (consistent) or "
+                          "drop the transformer");
       auto& side = transformer->side() == Transformer::Side::kSource ? source_side_ : target_side_;
       side.push_back(std::move(transformer));
     }
   }
-  if (conservative_ && !(source_side_.empty() && target_side_.empty()))
-    settings.fail("conservative",
-                  "conservative mapping through transformers is not supported yet: map forces "
-                  "as tractions (consistent) or drop the transformers");
 }
 
 void Mapper::initialize(const Coordinates& source, const Coordinates& target) {
@@ -44,19 +72,34 @@ void Mapper::initialize(const Coordinates& source, const Coordinates& target) {
   // Target-side transformers are undone in reverse order, so they are applied in order here.
   for (auto& transformer : target_side_)
     target_points = transformer->transform_points(target_points);
+  if (consistent_) consistent_->initialize(source_points, target_points);
   // Conservative mapping is the transpose of the consistent mapping the other way round.
-  if (conservative_)
-    interpolator_->initialize(target_points, source_points);
-  else
-    interpolator_->initialize(source_points, target_points);
+  if (conservative_) conservative_->initialize(target_points, source_points);
   initialized_ = true;
 }
 
+bool Mapper::conservative_for(const std::string& variable) const {
+  return all_conservative_ || conservative_variables_.count(variable) != 0;
+}
+
+const MappingQuality& Mapper::quality() const {
+  return consistent_ ? consistent_->quality() : conservative_->quality();
+}
+
 RowMatrix Mapper::map(const RowMatrix& source_values) const {
+  return map_with(source_values, all_conservative_);
+}
+
+RowMatrix Mapper::map(const RowMatrix& source_values, const std::string& variable) const {
+  return map_with(source_values, conservative_for(variable));
+}
+
+RowMatrix Mapper::map_with(const RowMatrix& source_values, bool conservative) const {
   if (!initialized_) throw std::logic_error("Mapper::map called before initialize");
   RowMatrix values = source_values;
   for (const auto& transformer : source_side_) values = transformer->forward(values);
-  values = conservative_ ? interpolator_->map_transpose(values) : interpolator_->map(values);
+  values = conservative ? RowMatrix(conservative_scale_ * conservative_->map_transpose(values))
+                        : consistent_->map(values);
   for (auto it = target_side_.rbegin(); it != target_side_.rend(); ++it)
     values = (*it)->backward(values);
   if (values.cols() == 3) values.array().rowwise() *= mask_.array();

@@ -44,6 +44,7 @@ class Permutation : public PointCopies {
     for (Eigen::Index i = 0; i < points.rows(); ++i) add_copy(i, matrix_);
     return points * matrix_.transpose();  // rows: (P x)^T
   }
+  bool keeps_totals() const override { return true; }
 
  private:
   Eigen::Matrix3d matrix_;  ///< new = matrix_ * old

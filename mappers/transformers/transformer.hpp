@@ -31,6 +31,10 @@ class Transformer {
   virtual RowMatrix forward(const RowMatrix& values) const = 0;
   /// Values at the transformed points back at this side's points.
   virtual RowMatrix backward(const RowMatrix& values) const = 0;
+  /// Whether totals survive the transform (each point one transformed point, vectors turned
+  /// but not stretched): only then can a conservative mapping pass through it. Copies that
+  /// stand for one point (a wedge's sides) would count a force once per copy.
+  virtual bool keeps_totals() const { return false; }
 };
 
 using TransformerRegistry = Registry<Transformer>;

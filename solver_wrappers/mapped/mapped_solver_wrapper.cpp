@@ -300,7 +300,7 @@ class MappedSolverWrapper : public SolverWrapper {
       return pair.mapper->map(RowMatrix::Ones(initial_coordinates(input_, pair.outer).rows(), 1));
     const auto exact = pair.round_trips.find(variable);
     if (exact != pair.round_trips.end()) return map_exactly(pair, exact->second, variable);
-    return pair.mapper->map(input_.values(pair.outer, variable));
+    return pair.mapper->map(input_.values(pair.outer, variable), variable);
   }
 
   /// The exact round trip, with the nodes the inner solver reports as not `driven` (if it
@@ -465,7 +465,7 @@ class MappedSolverWrapper : public SolverWrapper {
         RowMatrix values = inner_output.values(pair.inner, variable);
         if (variable == "displacement" && values.cols() == 3)
           values.rowwise() += frame_offset();  // the other solver sees the frame's motion
-        output_.values(pair.outer, variable) = pair.mapper->map(values);
+        output_.values(pair.outer, variable) = pair.mapper->map(values, variable);
       }
   }
 

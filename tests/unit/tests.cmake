@@ -14,6 +14,7 @@ cocopp_unit_test(mappers/interpolators
                  SOURCES test_interpolators.cpp test_interpolator_checks.cpp test_overlap.cpp
                  LIBS cocopp_mappers)
 cocopp_unit_test(mappers/transformers SOURCES test_transformers.cpp LIBS cocopp_mappers)
+cocopp_unit_test(mappers SOURCES test_mapper.cpp LIBS cocopp_mappers)
 
 # solvers (the solver side: what runs in a solver process)
 cocopp_unit_test(solvers/sdk SOURCES test_solver_sdk.cpp LIBS cocopp_sdk)
@@ -45,6 +46,7 @@ cocopp_unit_test(solver_wrappers/openfoam SOURCES test_openfoam_case.cpp
 # The CalculiX wrapper: deck reading and loads without ccx; the ccx runs where ccx is
 # (COCOPP_HAVE_CALCULIX, found once in solvers/calculix).
 cocopp_unit_test(solver_wrappers/calculix SOURCES test_calculix_deck.cpp test_displacement_drive_faces.cpp
+                 test_interface_loads_totals.cpp
                  LIBS cocopp_solver_wrappers)
 if(COCOPP_HAVE_CALCULIX)
   cocopp_unit_test(solver_wrappers/calculix SUFFIX ccx
