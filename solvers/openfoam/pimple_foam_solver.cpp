@@ -223,7 +223,7 @@ sdk::InterfaceDescription PimpleFoamSolver::interface_description() const {
          face_coordinates,
          {},
          gap_patch_id_ < 0 ? std::vector<std::string>{"pressure", "traction"}
-                           : std::vector<std::string>{"pressure", "traction", "gap"}});
+                           : std::vector<std::string>{"pressure", "traction", "gap", "force"}});
   }
   description.initial_output = loads();
   return description;
@@ -517,7 +517,8 @@ std::vector<double> PimpleFoamSolver::loads() const {
   std::vector<double> values;  // gathered on the master
   const tmp<volSymmTensorField> deviatoric_stress = turbulence_->devReff();  // kinematic
   // The output layout: per patch, with a gap patch the points' wall displacement (model part
-  // P_points); then (P_faces) the pressures, the tractions and with a gap patch the gaps.
+  // P_points); then (P_faces) the pressures, the tractions and with a gap patch the gaps and
+  // the forces.
   forAll(patch_ids_, i) {
     const label id = patch_ids_[i];
     if (gap_patch_id_ >= 0) {
@@ -534,8 +535,15 @@ std::vector<double> PimpleFoamSolver::loads() const {
                              numbering_[i].gather_faces(flatten(traction), 3)})
       values.insert(values.end(), part.begin(), part.end());
     if (gap_patch_id_ < 0) continue;
-    const auto part = numbering_[i].gather_faces(gaps(id), 1);
-    values.insert(values.end(), part.begin(), part.end());
+    // A film also gives the force each face puts on the wall as it stands now (N, pressure
+    // and shear on the face's area, what OpenFOAM's forces function object sums): a
+    // structure under it takes these totals, so that none of the film's load is lost where
+    // the two meshes differ (a conservative mapping).
+    const vectorField force(pressure * mesh_->boundary()[id].Sf() +
+                            traction * mesh_->boundary()[id].magSf());
+    for (const auto& part :
+         {numbering_[i].gather_faces(gaps(id), 1), numbering_[i].gather_faces(flatten(force), 3)})
+      values.insert(values.end(), part.begin(), part.end());
   }
   return values;
 }

@@ -87,7 +87,8 @@ class CoupledTime : public Foam::Time {
 class PimpleFoamSolver : public sdk::Solver {
  public:
   /// `gap_patch`: if not empty, the interface faces also output their gap to this patch and
-  /// the interface points their displacement (`wall_displacement`).
+  /// the force on each face (`force`: pressure and shear on its current area, N), and the
+  /// interface points their displacement (`wall_displacement`).
   PimpleFoamSolver(Foam::argList& args, const Foam::wordList& patch_names,
                    const Foam::word& gap_patch = Foam::word());
   ~PimpleFoamSolver() override;
