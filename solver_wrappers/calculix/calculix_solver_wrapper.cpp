@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/case/path_problem.hpp"
+#include "core/case/suggest.hpp"
 #include "core/data/restart_file.hpp"
 #include "solver_wrappers/process/child_process.hpp"
 #include "solver_wrappers/process/process_solver_wrapper.hpp"
@@ -95,10 +96,18 @@ CalculixSolverWrapper::CalculixSolverWrapper(const Settings& settings, const Run
   model_.input_variables =
       settings.get<std::vector<std::string>>("input_variables", {"pressure", "traction"});
   if (model_.input_variables.empty())
-    settings.fail("input_variables", "give at least one of pressure, traction");
+    settings.fail("input_variables", "give at least one of pressure, traction, or force alone");
   for (const auto& variable : model_.input_variables)
-    if (variable != "pressure" && variable != "traction")
-      settings.fail("input_variables", "'" + variable + "': the loads are pressure and traction");
+    if (variable != "pressure" && variable != "traction" && variable != "force")
+      settings.fail("input_variables",
+                    "'" + variable +
+                        "': the loads are pressure and traction, or force "
+                        "(a total per face)" +
+                        did_you_mean(variable, {"pressure", "traction", "force"}));
+  if (model_.takes("force") && model_.input_variables.size() > 1)
+    settings.fail("input_variables",
+                  "force is each face's whole load (the pressure and the traction on it): give "
+                  "it alone, or pressure and traction without it");
   displacement_drive_ =
       settings.get_choice("interface_drive", "load", {"load", "displacement"}) == "displacement";
   if (displacement_drive_) {
@@ -109,10 +118,10 @@ CalculixSolverWrapper::CalculixSolverWrapper(const Settings& settings, const Run
       settings.fail("surface_stiffness",
                     "give the structure's stiffness per area against a push of its surface, "
                     "in Pa/m (about its Young's modulus over the faces' length), > 0");
-    if (!model_.takes("pressure"))
+    if (!model_.takes("pressure") && !model_.takes("force"))
       settings.fail("input_variables",
                     "interface_drive: displacement balances the other solver's pressure: "
-                    "include pressure");
+                    "include pressure, or give force");
   }
   model_.threads = settings.get_int_in_range("threads", 1, 1, 64);
   model_.timeout = settings.get_in_range("timeout", 600.0, Range::timeout());

@@ -23,7 +23,8 @@ CalculixModel::FaceLoads CalculixModel::face_loads(const Interface& input) const
   FaceLoads face;
   if (takes("pressure")) face.pressure = input.values(surface_name, "pressure").col(0);
   if (takes("traction")) face.traction = input.values(surface_name, "traction");
-  if (!face.pressure.allFinite() || !face.traction.allFinite())
+  if (takes("force")) face.force = input.values(surface_name, "force");
+  if (!face.pressure.allFinite() || !face.traction.allFinite() || !face.force.allFinite())
     fail(fmt::format("solver '{}' at {}: the interface loads contain NaN or infinity", name,
                      position()));
   return face;

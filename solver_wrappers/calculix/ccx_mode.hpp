@@ -55,6 +55,7 @@ struct CalculixModel {
   struct FaceLoads {
     Eigen::VectorXd pressure;  ///< per face; empty if pressure is no input
     RowMatrix traction;        ///< per face; empty if traction is no input
+    RowMatrix force;           ///< the total per face (N); empty if force is no input
   };
   /// The loads of `input` on the faces; a NaN or infinity stops the run, naming the position.
   FaceLoads face_loads(const Interface& input) const;

@@ -80,8 +80,11 @@ Eigen::Vector3d DisplacementDrive::direction(std::int64_t node) const {
 
 void DisplacementDrive::plan(const Inputs& inputs, const NodeDisplacements& converged) {
   const auto faces = static_cast<Eigen::Index>(loads_.faces().size());
-  if (inputs.pressure.size() != faces || inputs.gap.size() != faces ||
-      inputs.coverage.size() != faces || inputs.traction.rows() != faces ||
+  const bool totals = inputs.force.size() > 0;
+  if ((totals ? inputs.force.rows() != faces
+              : inputs.pressure.size() != faces ||
+                    (inputs.traction.size() > 0 && inputs.traction.rows() != faces)) ||
+      inputs.gap.size() != faces || inputs.coverage.size() != faces ||
       inputs.wall_displacement.rows() != static_cast<Eigen::Index>(drivable_nodes_.size()))
     throw std::invalid_argument(
         "DisplacementDrive::plan: one value per interface face and one wall displacement per "
@@ -109,7 +112,9 @@ void DisplacementDrive::plan(const Inputs& inputs, const NodeDisplacements& conv
   // The faces where this iteration puts them, in a step with NLGEOM: the other solver
   // computed its loads on its wall there. (Without, ccx takes loads on the deck's geometry.)
   if (deck_.nonlinear_geometry()) move_faces(converged);
-  film_forces_ = loads_.nodal_forces(inputs_.traction, inputs_.pressure);
+  if (totals) inputs_.pressure = loads_.pressure_of_totals(inputs_.force);
+  film_forces_ = totals ? loads_.nodal_forces_of_totals(inputs_.force)
+                        : loads_.nodal_forces(inputs_.traction, inputs_.pressure);
 }
 
 void DisplacementDrive::move_faces(const NodeDisplacements& converged) {

@@ -54,10 +54,14 @@ class DisplacementDrive {
                     std::vector<std::int64_t> drivable_nodes, int dof, double surface_stiffness);
 
   /// This iteration's inputs (from the wrapper's input interface): one row per interface face,
-  /// and the wall displacement one per drivable node.
+  /// and the wall displacement one per drivable node. The loads are either the pressure and
+  /// the traction (traction may be empty: none) or the force on each face (a total, mapped
+  /// conservatively: the structure then takes exactly the other solver's force, and the
+  /// film's stiffness takes the face's mean pressure from it).
   struct Inputs {
     Eigen::VectorXd pressure;
     RowMatrix traction;
+    RowMatrix force;
     Eigen::VectorXd gap;
     Eigen::VectorXd coverage;
     RowMatrix wall_displacement;

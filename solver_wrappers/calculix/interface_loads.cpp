@@ -39,6 +39,46 @@ std::map<std::int64_t, Eigen::Vector3d> InterfaceLoads::nodal_forces(
   return forces;
 }
 
+std::map<std::int64_t, Eigen::Vector3d> InterfaceLoads::nodal_forces_of_totals(
+    const RowMatrix& force) const {
+  std::map<std::int64_t, Eigen::Vector3d> forces;
+  for (std::size_t f = 0; f < geometry_.size(); ++f) {
+    const auto& face = geometry_[f];
+    const Eigen::Vector3d total = force.row(static_cast<Eigen::Index>(f)).transpose();
+    for (std::size_t i = 0; i < face.nodes.size(); ++i) {
+      const std::int64_t node = face.nodes[i];
+      // A uniform traction's share: the node's shape function integral over the face's area
+      // (negative at a serendipity face's corners; the shares sum to one).
+      const double share = face.weights[static_cast<Eigen::Index>(i)] / face.area;
+      Eigen::Vector3d at_node = total;
+      const NodalTransform* transform = deck_.transform(node);
+      if (transform != nullptr && transform->type == 'C') {
+        const Eigen::Vector3d axis = (transform->b - transform->a).normalized();
+        const Eigen::Vector3d across = total - total.dot(axis) * axis;
+        const Eigen::Vector3d outwards_at_face = transform->axes_at(face.centroid).row(0);
+        const double radial = across.dot(outwards_at_face) < 0.0 ? -across.norm() : across.norm();
+        const Eigen::Vector3d outwards = transform->axes_at(deck_.node(node)).row(0);
+        at_node = total.dot(axis) * axis + radial * outwards;
+      }
+      forces.try_emplace(node, Eigen::Vector3d::Zero()).first->second += share * at_node;
+    }
+  }
+  return forces;
+}
+
+Eigen::VectorXd InterfaceLoads::pressure_of_totals(const RowMatrix& force) const {
+  Eigen::VectorXd pressure(static_cast<Eigen::Index>(geometry_.size()));
+  for (std::size_t f = 0; f < geometry_.size(); ++f) {
+    const auto& face = geometry_[f];
+    // A uniform pressure p gives the total -p N, N the integral of the outward normal over
+    // the face: the p whose total is nearest the force.
+    const Eigen::Vector3d normal = face.normal_weights.colwise().sum().transpose();
+    pressure[static_cast<Eigen::Index>(f)] =
+        -force.row(static_cast<Eigen::Index>(f)).dot(normal.transpose()) / normal.squaredNorm();
+  }
+  return pressure;
+}
+
 Eigen::Vector3d InterfaceLoads::in_node_system(std::int64_t node,
                                                const Eigen::Vector3d& global) const {
   const NodalTransform* transform = deck_.transform(node);
@@ -58,7 +98,7 @@ void InterfaceLoads::write_nodal_forces(std::ostream& out,
 }
 
 void InterfaceLoads::write(const std::filesystem::path& file, const Eigen::VectorXd& pressure,
-                           const RowMatrix& traction) const {
+                           const RowMatrix& traction, const RowMatrix& force) const {
   std::ofstream out(file);
   if (!out) throw std::runtime_error("cannot write the loads file " + file.string());
   out << "** Interface loads of this coupling iteration, written by cocopp\n";
@@ -69,6 +109,7 @@ void InterfaceLoads::write(const std::filesystem::path& file, const Eigen::Vecto
                          ccx_number(pressure[static_cast<Eigen::Index>(f)]));
   }
   if (traction.size() > 0) write_nodal_forces(out, nodal_forces(traction));
+  if (force.size() > 0) write_nodal_forces(out, nodal_forces_of_totals(force));
   if (!out.flush()) throw std::runtime_error("cannot write the loads file " + file.string());
 }
 

@@ -39,6 +39,16 @@ class InterfaceLoads {
   /// a uniform pressure per face (pushing into the body).
   std::map<std::int64_t, Eigen::Vector3d> nodal_forces(
       const RowMatrix& traction, const Eigen::VectorXd& pressure = Eigen::VectorXd()) const;
+  /// Nodal forces (global) of a total force per face (faces x 3, N; `force`, mapped
+  /// conservatively from the other solver's faces): each face's force spread over its nodes as
+  /// a uniform traction's nodal forces are, so that the nodes take the totals exactly. On nodes
+  /// with a cylindrical *TRANSFORM (a sector of a body of revolution) a face's force is
+  /// axisymmetric: its part along the axis acts along the axis, its part across the axis
+  /// radially at every node (inwards where it points inwards at the face's centroid), none
+  /// around it (the other solver's sector, symmetric about its own middle, has none).
+  std::map<std::int64_t, Eigen::Vector3d> nodal_forces_of_totals(const RowMatrix& force) const;
+  /// The mean pressure (pushing into the body) per face that a total force per face gives.
+  Eigen::VectorXd pressure_of_totals(const RowMatrix& force) const;
 
   /// A force (global x, y, z) in the node's *TRANSFORM system, as ccx takes its *CLOAD there
   /// (unchanged for a node without one).
@@ -52,9 +62,9 @@ class InterfaceLoads {
                           const std::function<bool(std::int64_t, int)>& skip = nullptr) const;
 
   /// Write the cards: `pressure` has one value per face (or is empty: no *DLOAD), `traction`
-  /// one row per face (or is empty: no *CLOAD).
+  /// and `force` (a total per face) one row per face (or are empty: no *CLOAD of theirs).
   void write(const std::filesystem::path& file, const Eigen::VectorXd& pressure,
-             const RowMatrix& traction) const;
+             const RowMatrix& traction, const RowMatrix& force = RowMatrix()) const;
 
  private:
   const InputDeck& deck_;

@@ -188,14 +188,16 @@ void PerIterationCcx::read_output(Interface& output) {
 }
 
 void PerIterationCcx::write_loads(const Interface& input) const {
-  const auto [pressure, traction] = model_.face_loads(input);
+  const auto [pressure, traction, force] = model_.face_loads(input);
   const auto loads_file = model_.file(kLoadsFile);
   if (!drive_.drive) {
-    model_.loads->write(loads_file, pressure, traction);
+    model_.loads->write(loads_file, pressure, traction, force);
     return;
   }
   DisplacementDrive::Inputs inputs{
-      pressure, traction.size() > 0 ? traction : RowMatrix::Zero(pressure.size(), 3),
+      pressure,
+      traction,
+      force,
       input.values(model_.surface_name, "gap").col(0),
       input.values(model_.surface_name, "coverage").col(0),
       input.values(drive_.node_set_name, DisplacementDrive::kNodeVariable)};

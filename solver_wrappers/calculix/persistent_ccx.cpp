@@ -239,8 +239,9 @@ void PersistentCcx::solve(const Interface& input, Interface& output) {
 }
 
 RowMatrix PersistentCcx::solve_in_process(const Interface& input) {
-  const auto [pressure, traction] = model_.face_loads(input);
+  const auto [pressure, traction, force] = model_.face_loads(input);
   const auto forces = traction.size() > 0 ? model_.loads->nodal_forces(traction)
+                      : force.size() > 0  ? model_.loads->nodal_forces_of_totals(force)
                                           : std::map<std::int64_t, Eigen::Vector3d>{};
   Interface request = process_->input_interface();
   if (model_.takes("pressure")) request.values("pressure_faces", "pressure").col(0) = pressure;

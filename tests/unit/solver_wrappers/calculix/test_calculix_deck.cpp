@@ -405,8 +405,12 @@ TEST_F(CalculixWithoutCcx, MissingResultsAreReported) {
 
 TEST_F(CalculixWithoutCcx, CaseKeysAreChecked) {
   EXPECT_CONTAINS(testing::error_message<CaseError>(
-                      [&] { test_.create(cylinder_.deck(), "input_variables: [force]\n"); }),
-                  "the loads are pressure and traction");
+                      [&] { test_.create(cylinder_.deck(), "input_variables: [forse]\n"); }),
+                  "the loads are pressure and traction, or force");
+  EXPECT_CONTAINS(testing::error_message<CaseError>([&] {
+                    test_.create(cylinder_.deck(), "input_variables: [pressure, force]\n");
+                  }),
+                  "force is each face's whole load");
   test_.create(cylinder_.deck(), fake_ccx("exit 0"), "NOSUCH");
   EXPECT_CONTAINS(testing::error_message<CaseError>([&] { test_.wrapper().initialize(); }),
                   "no element-face surface NOSUCH");

@@ -42,9 +42,9 @@ class DriveFaces : public ::testing::Test {
   DisplacementDrive::Inputs inputs() const {
     const auto faces = static_cast<Eigen::Index>(loads_->faces().size());
     const auto nodes = static_cast<Eigen::Index>(nodes_.size());
-    DisplacementDrive::Inputs in{Eigen::VectorXd::Zero(faces), RowMatrix::Zero(faces, 3),
-                                 Eigen::VectorXd::Ones(faces), Eigen::VectorXd::Ones(faces),
-                                 RowMatrix::Zero(nodes, 3)};
+    DisplacementDrive::Inputs in{
+        Eigen::VectorXd::Zero(faces), RowMatrix::Zero(faces, 3),    RowMatrix(),
+        Eigen::VectorXd::Ones(faces), Eigen::VectorXd::Ones(faces), RowMatrix::Zero(nodes, 3)};
     in.traction.col(2).setConstant(kShear);
     for (Eigen::Index n = 0; n < nodes; ++n) {
       const Eigen::Vector3d x = deck_->node(nodes_[static_cast<std::size_t>(n)]);
@@ -90,6 +90,36 @@ TEST_F(DriveFaces, TheLastConvergedStepGivesTheOtherDirections) {
   drive_->plan(inputs(), converged);
   EXPECT_NEAR(axial_force(), expected(cylinder_.ri + kRadialWall, 1.01 * cylinder_.length),
               1e-9 * expected(cylinder_.ri, cylinder_.length));
+}
+
+TEST_F(DriveFaces, GivenTotalsTheStructureTakesTheOtherSolversForceExactly) {
+  // The other solver's force per face (a film's, mapped conservatively): the structure's nodal
+  // forces sum to it along the axis and across it, wherever the faces stand, and the film's
+  // stiffness sees the faces' mean pressure.
+  auto in = inputs();
+  const auto faces = static_cast<Eigen::Index>(loads_->faces().size());
+  in.force = RowMatrix::Zero(faces, 3);
+  double axial = 0.0, radial = 0.0;
+  for (Eigen::Index f = 0; f < faces; ++f) {
+    const Eigen::Vector3d centre = loads_->geometry()[static_cast<std::size_t>(f)].centroid;
+    const Eigen::Vector3d outwards = Eigen::Vector3d(centre.x(), centre.y(), 0).normalized();
+    const double pushed = 0.3 + 0.1 * static_cast<double>(f);  // N, outwards into the wall
+    const double dragged = 0.02 * static_cast<double>(f + 1);  // N, along the axis
+    in.force.row(f) = (pushed * outwards + Eigen::Vector3d(0, 0, dragged)).transpose();
+    axial += dragged;
+    radial += pushed;
+  }
+  drive_->plan(in, {});
+  double film_axial = 0.0, film_radial = 0.0, film_hoop = 0.0;
+  for (const auto& [node, force] : drive_->film_forces()) {
+    const Eigen::Vector3d local = loads_->in_node_system(node, force);  // radial, hoop, axial
+    film_radial += local.x();
+    film_hoop += local.y();
+    film_axial += local.z();
+  }
+  EXPECT_NEAR(film_axial, axial, 1e-13 * axial);
+  EXPECT_NEAR(film_radial, radial, 1e-13 * radial);
+  EXPECT_NEAR(film_hoop, 0.0, 1e-13 * radial);
 }
 
 TEST_F(DriveFaces, WithoutNonlinearGeometryTheDecksFacesCarryTheLoads) {
