@@ -533,6 +533,9 @@ def calculix_wrapper(p, prefix):
                    "previous_iteration", "where ccx cut a step back, the step's next\n"
                    "iterations start at the increment that converged")}
     if displacement_driven(p):
+        wrapper["input_variables"] = case.commented(
+            ["force"], "the film's force on each face (a total): the wire\n"
+            "takes exactly the film's load (pressure and shear)")
         wrapper["interface_drive"] = case.commented(
             "displacement", "the surface under the film driven by its wall position")
         wrapper["driven_node_set"] = case.commented(
@@ -585,12 +588,20 @@ def input_mapper(p):
     to_wire_axes = case.commented(case.flow({"type": "permutation", "permutation": [1, 2, 0]}),
                                   "film (x, y, z) -> (y, z, x)")
     faces = {"type": case.commented("overlap", "each wire face: the length-weighted mean of the "
-                                               "film faces it\noverlaps along the axis, so the "
-                                               "film's load is conserved; zero\n(ambient) for the "
-                                               "part of a wire face outside the film"),
+                                               "film faces it\noverlaps along the axis (a value "
+                                               "per area times length is\nconserved); zero "
+                                               "(ambient) for the part of a wire face\noutside "
+                                               "the film"),
              "directions": ["y"], "transformers": [to_wire_axes]}
     if not displacement_driven(p):
         return case.commented(faces, "film faces (axis z, radial y) -> wire faces (r, axis)")
+    mesh = p["mesh"]
+    faces["conservative"] = case.commented(
+        ["force"], "each wire face: the film's force on the part of each\n"
+        "film face it overlaps (the transpose of a mean: totals kept)")
+    faces["conservative_scale"] = case.commented(
+        mesh["sector_degrees"] / mesh["wedge_degrees"],
+        "the wire's sector over the film's wedge")
     points = {"type": case.commented("linear", "film wall points -> the wire's drivable nodes: "
                                                "the wall's\nposition there, along the axis and "
                                                "across the wedge (an\ninterpolation, which "

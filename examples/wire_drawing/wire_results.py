@@ -139,6 +139,19 @@ def film_forces(results, film, schedule, row):
             "shear_total": float(np.sum(np.abs(shear) * area))}
 
 
+def film_exact_forces(results, film, row):
+    """The film's own force on the wire at `row`, whole ring, as the film sums it on its moved
+    faces (pressure and shear on each face's area: its `force` output, what OpenFOAM's `forces`
+    function object sums): {"axial", "radial" (outwards)}, or None for a run whose film did not
+    output it. The film's coordinates: x across its wedge, y radial, z along the axis."""
+    if "force" not in results.variables("y", "wire_faces"):
+        return None
+    force = results.values("y", "wire_faces", "force", row)
+    ring = 2 * np.pi / (2 * film.half_wedge)
+    return {"axial": float(ring * np.sum(force[:, 2])),
+            "radial": float(ring * np.sum(force[:, 1]))}
+
+
 def made_with(case, parameters, changes=()):
     """The parameters a case was made from and whether it was refined: make_case.py's
     made_with.yaml in the case, else the parameter file with `changes` (as --set)."""
