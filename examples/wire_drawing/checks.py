@@ -10,6 +10,8 @@ step; they are printed and written to CASE_DIR/checks.json:
 - film thickness where the die's approach ends (the entry cone and its rounded transition into
   the bearing) against Wilson and Walowit's inlet-zone
   estimate h0 = 3 eta U / ((Y - sigma_b) tan alpha);
+- reduction of the cross section just behind the bearing (the wire the die drew in its last
+  step);
 - drawing stress (exit force over the drawn cross section) against the ideal-work estimate
   Y ln(A0/A1) + sigma_b and Sachs' estimate with the friction the film computed;
 - axial force balance of the wire: exit force = back force - axial film force, with the film
@@ -34,6 +36,8 @@ from wire_results import (exit_force, film_exact_forces, film_forces, film_profi
 
 HERE = pathlib.Path(__file__).resolve().parent
 PAPER_ITERATIONS = 5.33
+# The reduction is measured on the wire the die drew in its last steps.
+BEHIND_BEARING_STEPS = 1
 
 
 def sachs_drawing_stress(yield_stress, back_stress, area_ratio, friction, half_angle):
@@ -137,12 +141,22 @@ def run_checks(case, p, refine, step=None):
                                               / forces["pressure_total"] - 1)
 
     profile = surface(frd, wire, time)
-    downstream = profile["z"] > film.length + 1e-3  # past the die, elastically recovered
-    drawn_radius = wire["radius"] + float(np.mean(profile["u_r"][downstream]))
+    # The wire as the die draws it now: the surface just behind the bearing, over the length
+    # it travels in BEHIND_BEARING_STEPS steps (farther downstream is wire the die drew while it
+    # was still closing; the mean over all of it is reported as reduction_downstream_mean).
+    behind = BEHIND_BEARING_STEPS * wire["drawing_speed"] * p["time"]["delta_t"]
+    just_behind = (profile["z"] > film.length) & (profile["z"] <= film.length + behind)
+    if not np.any(just_behind):
+        just_behind = profile["z"] > film.length
+    drawn_radius = wire["radius"] + float(np.mean(profile["u_r"][just_behind]))
     area_ratio = (drawn_radius / wire["radius"]) ** 2
     results["reduction"] = 1 - area_ratio
+    results["reduction_measured_over"] = [film.length, film.length + behind]
+    downstream = profile["z"] > film.length
+    results["reduction_downstream_mean"] = 1 - ((wire["radius"] + float(
+        np.mean(profile["u_r"][downstream]))) / wire["radius"]) ** 2
     results["drawing_stress"] = pull / (math.pi * drawn_radius ** 2)
-    mean_yield = float(np.mean(profile["yield_stress"][downstream]))
+    mean_yield = float(np.mean(profile["yield_stress"][just_behind]))
     results["mean_yield_stress_drawn"] = mean_yield
     results["ideal_work_stress"] = (0.5 * (wire["yield_stress"] + mean_yield)
                                     * math.log(1 / area_ratio) + back_stress)
@@ -171,7 +185,9 @@ def report(results):
         f"coupling iterations per step   {r['iterations_per_step']:.2f} (paper {r['paper_iterations_per_step']})",
         f"film at the end of the cone    {1e6 * r['film_thickness_at_cone_end']:.2f} um "
         f"(Wilson-Walowit h0 {1e6 * r['wilson_walowit_h0']:.2f} um); thinnest {1e6 * r['film_thickness_min']:.2f} um",
-        f"reduction of the cross section {100 * r['reduction']:.2f} %",
+        f"reduction of the cross section {100 * r['reduction']:.2f} % just behind the bearing "
+        f"({1e3 * r['reduction_measured_over'][0]:.2f}-{1e3 * r['reduction_measured_over'][1]:.2f} mm; "
+        f"{100 * r['reduction_downstream_mean']:.2f} % over all the wire past the die)",
         f"drawing force                  {r['exit_force']:.1f} N",
         f"drawing stress                 {1e-6 * r['drawing_stress']:.1f} MPa (ideal work "
         f"{1e-6 * r['ideal_work_stress']:.1f} MPa for this reduction, {1e-6 * r['ideal_work_stress_nominal']:.1f} "

@@ -135,9 +135,11 @@ def block_mesh_dict(film):
 
 def die_schedule(p):
     """(time, radial displacement) of the die: held, then closing at a constant rate until the
-    wire's cross section is reduced by `reduction`."""
-    radius, time = p["wire"]["radius"], p["time"]
-    closing = radius * (1.0 - math.sqrt(1.0 - p["die"]["reduction"]))
+    wire's cross section is reduced by `reduction`: the bearing at the reduced radius plus the
+    film it keeps there (`bearing_film`), from the initial gap `film_thickness`."""
+    radius, time, die = p["wire"]["radius"], p["time"], p["die"]
+    closing = (radius * (1.0 - math.sqrt(1.0 - die["reduction"]))
+               + die["film_thickness"] - die.get("bearing_film", die["film_thickness"]))
     held = time["held_steps"] * time["delta_t"]
     end = time["steps"] * time["delta_t"]
     if held >= end:
