@@ -3,7 +3,8 @@
 # and, built from the same Debian source package at set-up time, a ccx with cocopp's changes
 # (scripts/calculix/*.patch, applied in name order: restart files keep the material state
 # variables, so a plastic model restarts exactly, and the axisymmetry flag, so that a CAX model
-# restarts at all; a plastic NLGEOM stiffness assembled in a fraction of the time). The source
+# restarts at all; a plastic NLGEOM stiffness assembled in a fraction of the time; SuiteSparse
+# as a sparse direct solver, *STATIC, SOLVER=SUITESPARSE, with OpenBLAS). The source
 # is fetched into build-deps/ (outside git, never committed); the binary goes to
 # build-deps/calculix/bin/ccx, which CMake finds and the calculix wrapper uses by default
 # (docs/solver-wrappers-calculix.md, "State reset").
@@ -12,6 +13,7 @@
 # at once. The build takes about two minutes on two cores.
 #   scripts/install-calculix.sh              # into ./build-deps/calculix
 #   COCOPP_DEPS_DIR=/opt/deps scripts/install-calculix.sh
+#   COCOPP_BUILD_JOBS=1 nice -n 19 scripts/install-calculix.sh   # beside a running simulation
 set -euo pipefail
 cd "$(dirname "$0")/.."
 deps_dir=${COCOPP_DEPS_DIR:-$PWD/build-deps}
@@ -24,9 +26,13 @@ sudo_cmd=()
 [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
 installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"; }
 
-# 1. The binary package and what building ccx needs (Build-Depends of calculix-ccx).
+# 1. The binary package and what building ccx needs (Build-Depends of calculix-ccx), and
+# SuiteSparse for patch 06 with OpenBLAS, which CHOLMOD's supernodal factorization spends its
+# time in (installing it makes it the system's libblas.so.3, Debian's alternative of highest
+# priority; the reference BLAS makes CHOLMOD several times slower).
 missing=()
-for p in calculix-ccx dpkg-dev gfortran libspooles-dev libarpack2-dev liblapack-dev libblas-dev; do
+for p in calculix-ccx dpkg-dev gfortran libspooles-dev libarpack2-dev liblapack-dev libblas-dev \
+  libsuitesparse-dev libopenblas0-pthread; do
   installed "$p" || missing+=("$p")
 done
 if [ ${#missing[@]} -gt 0 ]; then
@@ -69,9 +75,12 @@ version=$(basename "$(dirname "$src")")  # ccx_2.20
 optimization=${COCOPP_CCX_OPTIMIZATION:--O3}
 echo "install-calculix: building $version with cocopp's patches, $optimization (log: $deps_dir/calculix-build.log)"
 # The hooks header of patch 05 is cocopp's (solvers/calculix).
-cflags="$optimization -w -I/usr/include/spooles -I$PWD/solvers/calculix -DARCH=\"Linux\" -DSPOOLES -DARPACK -DMATRIXSTORAGE -DUSE_MT=1"
-make -C "$src" -j "$(nproc)" \
-  CFLAGS="$cflags" \
+cflags="$optimization -w -I/usr/include/spooles -I/usr/include/suitesparse -I$PWD/solvers/calculix -DARCH=\"Linux\" -DSPOOLES -DSUITESPARSE -DARPACK -DMATRIXSTORAGE -DUSE_MT=1"
+# Debian's Makefile's libraries and SuiteSparse's (patch 06); CMake links cocopp-ccx with the
+# same (solvers/calculix/CMakeLists.txt).
+libs="-lspooles -lpthread -larpack -lcholmod -lumfpack -lsuitesparseconfig -llapack -lblas -lm -lc"
+make -C "$src" -j "${COCOPP_BUILD_JOBS:-$(nproc)}" \
+  CFLAGS="$cflags" LIBS="$libs" \
   FFLAGS="$optimization -w -fallow-argument-mismatch" >"$deps_dir/calculix-build.log" 2>&1 || {
   tail -20 "$deps_dir/calculix-build.log"
   echo "install-calculix: building ccx failed (log: $deps_dir/calculix-build.log)" >&2

@@ -33,6 +33,12 @@ target_compile_definitions(${COCOPP_LAST_TEST} PRIVATE
   COCOPP_TUBE_FLOW_EXECUTABLE="$<TARGET_FILE:cocopp-tube-flow>"
   COCOPP_TUBE_STRUCTURE_EXECUTABLE="$<TARGET_FILE:cocopp-tube-structure>"
   COCOPP_TUBE_RINGMODEL_EXECUTABLE="$<TARGET_FILE:cocopp-tube-ringmodel>")
+# ccx's SOLVER=SUITESPARSE at its interface (scripts/calculix/06-suitesparse-solver.patch),
+# linked with ccx's objects as cocopp-ccx is.
+if(COCOPP_HAVE_COUPLED_CCX)
+  cocopp_unit_test(solvers/calculix SOURCES test_ccx_suitesparse.cpp
+                   LIBS cocopp_ccx_objects Eigen3::Eigen LABELS ccx)
+endif()
 
 # solver wrappers (the coupler side)
 cocopp_unit_test(solver_wrappers/process
