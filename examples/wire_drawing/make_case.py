@@ -25,7 +25,8 @@ from cocopp import calculix, case, openfoam
 from cocopp.openfoam import header
 
 HERE = pathlib.Path(__file__).resolve().parent
-TEXT_PARAMETERS = {"wire_element", "wire_model", "model", "type", "drive", "film_motion"}  # others: numbers
+TEXT_PARAMETERS = {"wire_element", "wire_model", "model", "type", "drive", "film_motion",
+                   "solver"}  # others: numbers
 
 
 def load_parameters(path, changes):
@@ -131,6 +132,15 @@ def block_mesh_dict(film):
             "    outlet { type patch; faces ((8 9 10 11)); }\n"
             f"    front  {{ type wedge; faces ({front}); }}\n"
             f"    back   {{ type wedge; faces ({back}); }}\n);\n")
+
+
+def static_card(p):
+    """*STATIC with the sparse direct solver calculix.solver names (spooles: ccx's default;
+    suitesparse: CHOLMOD, cocopp's ccx patch 06, the same answers to round-off)."""
+    solver = p["calculix"].get("solver", "spooles")
+    if solver not in ("spooles", "suitesparse"):
+        sys.exit(f"make_case.py: calculix.solver: '{solver}' is not spooles or suitesparse")
+    return "*STATIC" if solver == "spooles" else "*STATIC, SOLVER=SUITESPARSE"
 
 
 def die_schedule(p):
@@ -381,7 +391,7 @@ def material_and_step(p, boundary):
     lines += boundary
     lines += ["** Quasi-static: inertia is below 1e-2 of the stresses (docs/wire-drawing.md).",
               "** A step that needs more increments than INC gives up: the coupler steps back.",
-              f"*STEP, NLGEOM, INC={p['calculix']['max_increments']}", "*STATIC",
+              f"*STEP, NLGEOM, INC={p['calculix']['max_increments']}", static_card(p),
               f"{time['delta_t']:.13g}, {time['delta_t']:.13g}, {time['delta_t'] * 1e-6:.13g}, "
               f"{time['delta_t']:.13g}",
               "** The back force: a uniform tension on the entry end (a negative pressure).",
