@@ -13,7 +13,11 @@ step; they are printed and written to CASE_DIR/checks.json:
 - reduction of the cross section just behind the bearing (the wire the die drew in its last
   step);
 - drawing stress (exit force over the drawn cross section) against the ideal-work estimate
-  Y ln(A0/A1) + sigma_b and Sachs' estimate with the friction the film computed;
+  Y ln(A0/A1) + sigma_b and Sachs' estimate with the friction the film computed; and the
+  drawing force against its terms: back force + ideal work of the local reduction + the film's
+  viscous shear;
+- steady drawing: how far the drawing force and the film at the end of the cone moved over
+  the last 10 steps;
 - axial force balance of the wire: exit force = back force - axial film force, with the film
   force integrated on the film's faces (shear, and the pressure on the wall's slope), and, at
   the last step, as ccx applied it on the wire's moved surface (structure/cocopp_loads.inp);
@@ -38,6 +42,8 @@ HERE = pathlib.Path(__file__).resolve().parent
 PAPER_ITERATIONS = 5.33
 # The reduction is measured on the wire the die drew in its last steps.
 BEHIND_BEARING_STEPS = 1
+# Steady drawing: the drawing force and the inlet film within 1 % over this many steps.
+STEADY_WINDOW = 10
 
 
 def sachs_drawing_stress(yield_stress, back_stress, area_ratio, friction, half_angle):
@@ -62,6 +68,30 @@ def step_balances(case, run, film, wire):
         film_axial = film_exact_forces(run, film, run.row(step))["axial"]
         errors[step] = (pull - (wire["back_force"] - film_axial)) / pull
     return errors
+
+
+def steadiness(case, run, film, schedule, wire, last_step, window=STEADY_WINDOW):
+    """The drawing force (from each step's .frd) and the film where the die's approach ends,
+    per step up to `last_step`, and how far each moved over the last `window` steps:
+    (largest - smallest) / mean. None before `window` steps."""
+    approach_end = film.entry + film.transition
+    force, inlet = {}, {}
+    for step, path in step_files(case).items():
+        if step in run.steps and step <= last_step:
+            force[step] = exit_force(Frd(path), wire)
+            z, thickness, _ = film_profile(run, film, schedule, run.row(step))
+            inlet[step] = float(np.interp(approach_end, z, thickness))
+    last = sorted(force)[-window:]
+    if len(last) < window or last[-1] - last[0] != window - 1:
+        return None
+
+    def spread(values):
+        values = [values[s] for s in last]
+        return (max(values) - min(values)) / abs(float(np.mean(values)))
+    return {"steady_window": [last[0], last[-1]], "drawing_force_spread": spread(force),
+            "film_at_cone_end_spread": spread(inlet),
+            "drawing_force_history": {str(k): v for k, v in force.items()},
+            "film_at_cone_end_history": {str(k): v for k, v in inlet.items()}}
 
 
 def run_checks(case, p, refine, step=None):
@@ -93,6 +123,9 @@ def run_checks(case, p, refine, step=None):
         forces = film_forces(run, film, schedule, row)
         exact = film_exact_forces(run, film, row)
         balance = step_balances(case, run, film, wire) if exact is not None else None
+        steady = steadiness(case, run, film, schedule, wire, results["step"])
+    if steady:
+        results.update(steady)
     results.update({f"film_{k}": v for k, v in forces.items()})
     if exact is not None:
         results.update({f"film_exact_{k}": v for k, v in exact.items()})
@@ -166,6 +199,18 @@ def run_checks(case, p, refine, step=None):
     results["friction_coefficient"] = friction
     results["sachs_stress"] = sachs_drawing_stress(0.5 * (wire["yield_stress"] + mean_yield),
                                                    back_stress, area_ratio, friction, alpha)
+    # The drawing force term by term: the back force, the ideal work of the reduction the die
+    # draws now (homogeneous, frictionless: Y ln(A0/A1) on the drawn section, Y the mean of the
+    # initial and the drawn yield stress) and the film's viscous shear, which a film carries
+    # instead of Coulomb friction. Redundant work (the die's shearing of the section) is left
+    # out: it is what the estimate misses.
+    terms = {"back_force": wire["back_force"],
+             "ideal_work": (0.5 * (wire["yield_stress"] + mean_yield) * math.log(1 / area_ratio)
+                            * math.pi * drawn_radius ** 2),
+             "film_shear": -forces["shear_axial"]}
+    results["drawing_force_terms"] = terms
+    results["drawing_force_estimate"] = sum(terms.values())
+    results["drawing_force_error"] = pull / results["drawing_force_estimate"] - 1
     at_points = integration_point_check(frd_path.with_suffix(".dat"), wire)
     if at_points:
         results["max_equivalent_over_yield"], results["max_plastic_strain_surface"] = at_points
@@ -192,6 +237,11 @@ def report(results):
         f"drawing stress                 {1e-6 * r['drawing_stress']:.1f} MPa (ideal work "
         f"{1e-6 * r['ideal_work_stress']:.1f} MPa for this reduction, {1e-6 * r['ideal_work_stress_nominal']:.1f} "
         f"MPa nominal; Sachs {1e-6 * r['sachs_stress']:.1f} MPa with mu {r['friction_coefficient']:.4f})",
+        f"drawing force, its terms       {r['drawing_force_estimate']:.1f} N = back force "
+        f"{r['drawing_force_terms']['back_force']:.1f} N + ideal work "
+        f"{r['drawing_force_terms']['ideal_work']:.1f} N + film shear "
+        f"{r['drawing_force_terms']['film_shear']:.1f} N; the computed force "
+        f"{100 * r['drawing_force_error']:+.1f} % from it",
         f"axial force balance, film      {100 * r['force_balance_error_film']:+.3f} % (film: shear "
         f"{r['film_shear_axial']:.1f} N, pressure {r['film_pressure_axial']:.1f} N, estimated "
         f"from the wall's slope)",
@@ -205,6 +255,10 @@ def report(results):
         lines += [f"axial force balance, each step {100 * r['force_balance_error_film_largest']:+.4f} % "
                   f"at most (step {r['force_balance_error_film_largest_step']}, of "
                   f"{r['force_balance_steps']} steps)"]
+    if "steady_window" in r:
+        lines += [f"steady drawing, steps {r['steady_window'][0]}-{r['steady_window'][1]}     "
+                  f"drawing force within {100 * r['drawing_force_spread']:.2f} %, film at the end "
+                  f"of the cone within {100 * r['film_at_cone_end_spread']:.2f} % (steady: 1 %)"]
     if "transfer_error_axial" in r:
         lines += [
             f"axial force balance, wire      {100 * r['force_balance_error']:+.4f} % (as applied: "

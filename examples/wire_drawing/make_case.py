@@ -146,7 +146,8 @@ def static_card(p):
 def die_schedule(p):
     """(time, radial displacement) of the die: held, then closing at a constant rate until the
     wire's cross section is reduced by `reduction`: the bearing at the reduced radius plus the
-    film it keeps there (`bearing_film`), from the initial gap `film_thickness`."""
+    film it keeps there (`bearing_film`), from the initial gap `film_thickness`; then held
+    there for `time.steady_steps` more steps (steady drawing)."""
     radius, time, die = p["wire"]["radius"], p["time"], p["die"]
     closing = (radius * (1.0 - math.sqrt(1.0 - die["reduction"]))
                + die["film_thickness"] - die.get("bearing_film", die["film_thickness"]))
@@ -155,7 +156,21 @@ def die_schedule(p):
     if held >= end:
         return [(0.0, 0.0), (end, 0.0)]
     held_points = [(held, 0.0)] if held > 0 else []  # a table's times must increase
-    return [(0.0, 0.0)] + held_points + [(end, -closing)]
+    steady = [(end + steady_steps(p) * time["delta_t"], -closing)] if steady_steps(p) else []
+    return [(0.0, 0.0)] + held_points + [(end, -closing)] + steady
+
+
+def steady_steps(p):
+    """The steps after the die has closed, with the die held at its final diameter."""
+    steps = p["time"].get("steady_steps", 0)
+    if not isinstance(steps, int) or steps < 0:
+        sys.exit(f"make_case.py: time.steady_steps: '{steps}' is not a whole number >= 0")
+    return steps
+
+
+def total_steps(p):
+    """The time steps of the run: the die held, closing, then held closed."""
+    return p["time"]["steps"] + steady_steps(p)
 
 
 # The film's zones for its layered motion: the cells, and the wire and die walls as face zones.
@@ -206,7 +221,7 @@ def fluid_files(p, film):
     lubricant, time = p["lubricant"], p["time"]
     speed = p["wire"]["drawing_speed"]
     table = " ".join(f"({t:.17g} {d:.17g})" for t, d in die_schedule(p))
-    end_time = time["steps"] * time["delta_t"]
+    end_time = total_steps(p) * time["delta_t"]
     walls = "    front        { type wedge; }\n    back         { type wedge; }\n"
     return {
         "system/blockMeshDict": block_mesh_dict(film),
@@ -470,7 +485,7 @@ def case_file(p):
                                                  "displacement residual"),
          "tolerance": 1.0e-8},
         {"type": "iteration_limit", "maximum": coupling["max_iterations"]}]}
-    settings = {"delta_t": time["delta_t"], "number_of_timesteps": time["steps"],
+    settings = {"delta_t": time["delta_t"], "number_of_timesteps": total_steps(p),
                 "state_interval": case.commented(time["state_interval"], "a state to restart "
                                                  "from (cocopp run --restart)")}
     return case.dump({"settings": settings, "coupled_solver": coupled_solver,

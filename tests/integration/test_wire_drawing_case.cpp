@@ -119,6 +119,9 @@ TEST(WireDrawingCase, CoarseShortRunCouplesFilmAndWire) {
   // The wire has yielded under the die, and its stresses stay on the yield surface.
   EXPECT_GT(number("max_plastic_strain_surface"), 1e-4);
   EXPECT_LT(number("max_equivalent_over_yield"), 1.0 + 1e-3);
+  // The drawing force against its terms: back force + ideal work of the reduction drawn now +
+  // the film's viscous shear (issue 45's 15 %; measured -2.5 %: the shear is most of it here).
+  EXPECT_LT(std::abs(number("drawing_force_error")), 0.15);
 
   expect_plot_draws(directory.path());
 
