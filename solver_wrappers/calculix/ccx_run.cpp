@@ -72,10 +72,15 @@ bool gave_up(const std::string& log_text) {
 
 std::vector<std::pair<std::string, std::string>> ccx_thread_environment(int threads) {
   const std::string count = std::to_string(threads);
-  return {{"OMP_NUM_THREADS", count},
-          {"CCX_NPROC_EQUATION_SOLVER", count},
-          {"CCX_NPROC_RESULTS", count},
-          {"CCX_NPROC_STIFFNESS", count}};
+  // ccx's own threads are pthreads (CCX_NPROC_*). Its libraries' are not theirs to multiply:
+  // Debian's CHOLMOD opens OpenMP regions of a built-in 4 threads per supernode and OpenBLAS
+  // one per core, which on top of ccx's oversubscribe the machine and spend a third of the
+  // run waking and yielding threads (wire drawing, one coupling iteration of step 100 on
+  // 2 cores: 6.2 s; 3.8 s with both limited to one, the same displacements to every digit
+  // ccx prints; docs/solver-wrappers-calculix.md).
+  return {{"OMP_NUM_THREADS", count},    {"OMP_THREAD_LIMIT", "1"},
+          {"OPENBLAS_NUM_THREADS", "1"}, {"CCX_NPROC_EQUATION_SOLVER", count},
+          {"CCX_NPROC_RESULTS", count},  {"CCX_NPROC_STIFFNESS", count}};
 }
 
 CcxRunResult run_ccx(const CcxRunOptions& options) {

@@ -403,6 +403,21 @@ TEST_F(CalculixWithoutCcx, MissingResultsAreReported) {
                   "cannot read ccx's results file");
 }
 
+// ccx's threads are its own (`threads:`); CHOLMOD and OpenBLAS inside it get one each, or they
+// oversubscribe the machine (docs/solver-wrappers-calculix.md: a third of the wire drawing
+// case's time went to waking and yielding their threads).
+TEST_F(CalculixWithoutCcx, CcxGetsItsThreadsAndItsLibrariesOne) {
+  test_.create(cylinder_.deck(),
+               fake_ccx("env | grep -E '^(OMP_|OPENBLAS_|CCX_NPROC_)' | sort > thread_env.txt") +
+                   "threads: 2\n");
+  test_.wrapper().initialize();
+  test_.wrapper().initialize_step(1, 1.0);
+  EXPECT_THROW(test_.solve(1e6), SolverError);  // the fake ccx writes no results
+  EXPECT_EQ(read_text(test_.path("wall/thread_env.txt")),
+            "CCX_NPROC_EQUATION_SOLVER=2\nCCX_NPROC_RESULTS=2\nCCX_NPROC_STIFFNESS=2\n"
+            "OMP_NUM_THREADS=2\nOMP_THREAD_LIMIT=1\nOPENBLAS_NUM_THREADS=1\n");
+}
+
 TEST_F(CalculixWithoutCcx, CaseKeysAreChecked) {
   EXPECT_CONTAINS(testing::error_message<CaseError>(
                       [&] { test_.create(cylinder_.deck(), "input_variables: [forse]\n"); }),
