@@ -415,6 +415,10 @@ def material_and_step(p, boundary):
               "** the increment's largest displacement (ccx's defaults: 0.005, 0.01).",
               "*CONTROLS, PARAMETERS=FIELD",
               f"{p['calculix']['residual_tolerance']:g}, {p['calculix']['correction_tolerance']:g}",
+              "** ccx's increment control at its defaults but for the cut-back of a diverging",
+              "** increment (D_f, ccx's 0.25) and of one converging too slowly (D_C, 0.5).",
+              "*CONTROLS, PARAMETERS=TIME INCREMENTATION", "4, 8, 9, 16, 10, 4, 12, 5",
+              f"{p['calculix']['cutback']:g}, 0.5",
               "*NODE FILE", "U, RF", "*EL FILE", "S, PEEQ",
               "** Stresses at the integration points, for the check against the yield stress",
               "*EL PRINT, ELSET=SKIN", "S, PEEQ", "*END STEP"]
