@@ -17,7 +17,8 @@ displacements are read in full precision from the restart file ccx writes at the
 
 STRUCTURE is the structure folder of a wire drawing run (default:
 examples/wire_drawing/results/case/structure); nothing is written into it. --threads sets
-OMP_NUM_THREADS, CCX_NPROC_EQUATION_SOLVER (SPOOLES) and OPENBLAS_NUM_THREADS (CHOLMOD's BLAS).
+OMP_NUM_THREADS and CCX_NPROC_* (ccx's own threads, SPOOLES's among them); CHOLMOD's OpenMP and
+OpenBLAS get one thread, as the calculix wrapper gives them (docs/solver-wrappers-calculix.md).
 CHOLMOD spends its time in the BLAS: when the system's libblas.so.3 is not OpenBLAS but
 OpenBLAS is installed (libopenblas0-pthread), ccx runs with it through LD_LIBRARY_PATH (--blas
 system keeps the system's). With --repeat N each solver runs N times and the fastest run is
@@ -116,7 +117,8 @@ def run_once(structure, work, ccx, solver, threads, use_openblas):
     (work / "cocopp_iteration.inp").write_text(
         iteration_deck((structure / "cocopp_iteration.inp").read_text(), solver))
     env = dict(os.environ, OMP_NUM_THREADS=str(threads), CCX_NPROC_EQUATION_SOLVER=str(threads),
-               OPENBLAS_NUM_THREADS=str(threads), COCOPP_CCX_SOLVER_TIMES="1")
+               CCX_NPROC_RESULTS=str(threads), CCX_NPROC_STIFFNESS=str(threads),
+               OMP_THREAD_LIMIT="1", OPENBLAS_NUM_THREADS="1", COCOPP_CCX_SOLVER_TIMES="1")
     if use_openblas:
         env["LD_LIBRARY_PATH"] = f"{OPENBLAS_DIR}:{env.get('LD_LIBRARY_PATH', '')}".rstrip(":")
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
