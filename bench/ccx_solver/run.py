@@ -31,6 +31,7 @@ import resource
 import shutil
 import struct
 import subprocess
+import sys
 import tempfile
 import time
 from pathlib import Path
@@ -38,6 +39,8 @@ from pathlib import Path
 import numpy as np
 
 ROOT = Path(__file__).resolve().parent.parent.parent
+sys.path.insert(0, str(ROOT / "python"))
+from cocopp.calculix import ccx_environment  # noqa: E402
 OPENBLAS_DIR = Path("/usr/lib/x86_64-linux-gnu/openblas-pthread")
 SYSTEM_BLAS = Path("/usr/lib/x86_64-linux-gnu/libblas.so.3")
 TIME_LINE = re.compile(r"cocopp solver time: (\S+) (\S+) cpu (\S+) s wall (\S+) s")
@@ -116,9 +119,7 @@ def run_once(structure, work, ccx, solver, threads, use_openblas):
     shutil.copy(structure / "cocopp_converged.rout", work / "cocopp_iteration.rin")
     (work / "cocopp_iteration.inp").write_text(
         iteration_deck((structure / "cocopp_iteration.inp").read_text(), solver))
-    env = dict(os.environ, OMP_NUM_THREADS=str(threads), CCX_NPROC_EQUATION_SOLVER=str(threads),
-               CCX_NPROC_RESULTS=str(threads), CCX_NPROC_STIFFNESS=str(threads),
-               OMP_THREAD_LIMIT="1", OPENBLAS_NUM_THREADS="1", COCOPP_CCX_SOLVER_TIMES="1")
+    env = dict(ccx_environment(threads), COCOPP_CCX_SOLVER_TIMES="1")
     if use_openblas:
         env["LD_LIBRARY_PATH"] = f"{OPENBLAS_DIR}:{env.get('LD_LIBRARY_PATH', '')}".rstrip(":")
     before = resource.getrusage(resource.RUSAGE_CHILDREN)

@@ -70,8 +70,9 @@ def main():
                          fontsize=10)
 
     steps, film = history(checks, "film_at_cone_end_history")
-    draw_band(film_axis, steps, [1e6 * h for h in film], window)
-    film_axis.plot(steps, [1e6 * h for h in film], "o-", ms=3, label="film where the approach ends")
+    film_um = [1e6 * h for h in film]
+    draw_band(film_axis, steps, film_um, window)
+    film_axis.plot(steps, film_um, "o-", ms=3, label="film where the approach ends")
     film_axis.axhline(1e6 * checks["wilson_walowit_h0"], color="C1", ls="--",
                       label="Wilson-Walowit inlet film")
     film_axis.set_ylabel("film thickness (um)")

@@ -6,7 +6,6 @@ structure/results/step_NNNNN.frd).
 ccx writes an axisymmetric model's results on the 2D nodes: x is the radius, y the axis and z
 the hoop direction; stresses are extrapolated from the integration points to the nodes.
 """
-import os
 import pathlib
 import shutil
 import subprocess
@@ -15,7 +14,7 @@ import numpy as np
 import yaml
 
 import make_case
-from cocopp.calculix import dat_block, deck_elements
+from cocopp.calculix import ccx_environment, dat_block, deck_elements
 
 
 def integration_point_check(dat_path, wire):
@@ -171,8 +170,7 @@ def restart_ccx(structure, work, ccx):
     shutil.copy(structure / "cocopp_converged.rout", work / "cocopp_iteration.rin")
     with open(work / "ccx.log", "w") as log:
         return subprocess.run([ccx, "-i", "cocopp_iteration"], cwd=work, stdout=log,
-                              stderr=subprocess.STDOUT,
-                              env=dict(os.environ, OMP_NUM_THREADS="2")).returncode
+                              stderr=subprocess.STDOUT, env=ccx_environment(2)).returncode
 
 
 def applied_loads(loads_file):

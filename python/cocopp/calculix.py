@@ -11,12 +11,25 @@ file's printed blocks, the .frd file's nodes and results), and a deck's nodes an
 
     displacements = calculix.dat_block("bar.dat", "displacements")   # [[node, ux, uy, uz], ...]
 """
+import os
 import pathlib
 
 import numpy as np
 
 # ccx reads at most 16 entries a data line; an element goes on after a comma, on the next line.
 ENTRIES_PER_LINE = 16
+
+
+def ccx_environment(threads, base=None):
+    """The environment the calculix wrapper runs ccx in (solver_wrappers/calculix/ccx_run.cpp's
+    ccx_thread_environment), on top of `base` (default os.environ): `threads` of ccx's own, and
+    one each for CHOLMOD's OpenMP and OpenBLAS, which otherwise oversubscribe the machine
+    (docs/solver-wrappers-calculix.md)."""
+    count = str(threads)
+    return dict(os.environ if base is None else base, OMP_NUM_THREADS=count,
+                OMP_THREAD_LIMIT="1", OPENBLAS_NUM_THREADS="1",
+                CCX_NPROC_EQUATION_SOLVER=count, CCX_NPROC_RESULTS=count,
+                CCX_NPROC_STIFFNESS=count)
 
 
 def number(value):

@@ -31,7 +31,8 @@ struct CcxRunResult {
 };
 
 /// The environment that gives ccx `threads` threads: its equation solver (SPOOLES/PaStiX) and
-/// its element loops read these.
+/// its element loops read these; its libraries get one (python/cocopp/calculix.py's
+/// ccx_environment is the same for the Python tools that run ccx).
 std::vector<std::pair<std::string, std::string>> ccx_thread_environment(int threads);
 
 /// Run ccx and wait for it; never throws for a failure of ccx itself (see the status), but
