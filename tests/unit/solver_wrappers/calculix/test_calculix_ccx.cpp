@@ -400,6 +400,42 @@ TEST(CalculixCcx, CarriedInitialIncrementSkipsTheCutBack) {
   }
 }
 
+/// How many times `text` starts a line of `file`.
+int lines_starting_with(const std::filesystem::path& file, const std::string& text) {
+  std::ifstream in(file);
+  int count = 0;
+  for (std::string line; std::getline(in, line);) count += line.rfind(text, 0) == 0 ? 1 : 0;
+  return count;
+}
+
+// A coupling iteration's results are read at its step's end: the deck's output cards write only
+// the step's last increment (ccx always writes it), not each of the step's 4 here, and the
+// answer is Lamé's as ever. A deck that sets an output FREQUENCY keeps its own.
+TEST(CalculixCcx, AnIterationWritesOnlyItsStepsEnd) {
+  for (const bool deck_frequency : {false, true}) {
+    SCOPED_TRACE(deck_frequency ? "the deck's FREQUENCY=2" : "no FREQUENCY in the deck");
+    SectorCylinder cylinder;
+    cylinder.nlgeom = true;
+    cylinder.procedure = "*STATIC, DIRECT";  // four increments of a quarter
+    cylinder.increments = "0.25, 1.0";
+    cylinder.extra_step_cards = deck_frequency ? "*NODE FILE, FREQUENCY=2\nU\n" : "*NODE FILE\nU\n";
+    CalculixCase test;
+    test.start(cylinder.deck(), mode_keys("per_iteration"));
+    const double p = 100e6;
+    const Eigen::VectorXd radial = test.radial(test.solve(p));
+    const double expected = cylinder.lame_radial_displacement(p, cylinder.ri);
+    // The full load's (NLGEOM leaves 4e-4 from small-strain Lamé), not an earlier quarter's.
+    for (Eigen::Index i = 0; i < radial.size(); ++i)
+      EXPECT_NEAR(radial[i], expected, 1e-3 * expected);
+    EXPECT_EQ(calculix::read_sta(test.path("wall/cocopp_iteration.sta")).size(), 4U);
+    EXPECT_EQ(lines_starting_with(test.path("wall/cocopp_iteration.frd"), " -4  DISP"),
+              deck_frequency ? 2 : 1);
+    // ccx's prints follow the deck's file FREQUENCY too: increments 2 and 4.
+    EXPECT_EQ(lines_starting_with(test.path("wall/cocopp_iteration.dat"), " displacements"),
+              deck_frequency ? 2 : 1);
+  }
+}
+
 #ifdef COCOPP_HAVE_PATCHED_CCX
 /// The Newton iterations of every increment in a .sta file ("STEP INC ATT ITRS ...").
 std::vector<int> newton_iterations(const std::filesystem::path& sta_file) {
