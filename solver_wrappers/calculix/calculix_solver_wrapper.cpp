@@ -118,6 +118,13 @@ CalculixSolverWrapper::CalculixSolverWrapper(const Settings& settings, const Run
       settings.fail("surface_stiffness",
                     "give the structure's stiffness per area against a push of its surface, "
                     "in Pa/m (about its Young's modulus over the faces' length), > 0");
+    reynolds_film_ =
+        settings.get_choice("film_stiffness", "local", {"local", "reynolds"}) == "reynolds";
+    if (settings.has("surface_compliance")) {
+      surface_compliance_file_ = settings.required<std::string>("surface_compliance");
+      surface_compliance_scale_ =
+          settings.get_in_range("surface_compliance_scale", 1.0, Range::positive());
+    }
     if (!model_.takes("pressure") && !model_.takes("force"))
       settings.fail("input_variables",
                     "interface_drive: displacement balances the other solver's pressure: "
@@ -296,6 +303,11 @@ void CalculixSolverWrapper::read_deck() {
       drive_ = std::make_unique<calculix::DisplacementDrive>(
           *model_.deck, *model_.loads, model_.interface_nodes, driven_node_set_, driven_dof_,
           surface_stiffness_);
+      if (!surface_compliance_file_.empty())
+        drive_->use_compliance(
+            calculix::SurfaceCompliance::read(model_.file(surface_compliance_file_)),
+            surface_compliance_scale_);
+      if (reynolds_film_) drive_->use_reynolds_film();
     }
   } catch (const calculix::DeckError& e) {
     throw CaseError(input_file_where_ + ": solver '" + model_.name + "': " + e.what());

@@ -79,6 +79,9 @@ class CalculixSolverWrapper : public SolverWrapper {
   int driven_dof_ = 1;
   std::string driven_node_set_name_;  ///< the nodes that may be driven (default: the interface's)
   double surface_stiffness_ = 0.0;
+  std::string surface_compliance_file_;  ///< empty: the drive's stiffness per line
+  double surface_compliance_scale_ = 1.0;
+  bool reynolds_film_ = false;  ///< film_stiffness: reynolds
   std::vector<std::int64_t> driven_node_set_;
   std::unique_ptr<calculix::DisplacementDrive> drive_;
   // mode

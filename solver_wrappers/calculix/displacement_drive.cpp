@@ -2,11 +2,15 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <tuple>
+
+#include "solver_wrappers/calculix/reynolds_film.hpp"
 
 namespace cocopp::calculix {
 
@@ -76,6 +80,19 @@ Eigen::Vector3d DisplacementDrive::direction(std::int64_t node) const {
   if (const NodalTransform* transform = deck_.transform(node))
     return transform->axes_at(deck_.node(node)).row(dof_ - 1).transpose();
   return Eigen::Vector3d::Unit(dof_ - 1);
+}
+
+void DisplacementDrive::use_compliance(SurfaceCompliance compliance, double scale) {
+  // Every drivable node's line must be one of the file's, whole: a line split between two
+  // rows, or half missing, would move its nodes apart.
+  for (const auto node : drivable_nodes_)
+    if (!compliance.row_of(node))
+      throw DeckError(fmt::format(
+          "node {} may be driven but is in none of the surface compliance's lines: the file "
+          "must list every line of the driven node set",
+          node));
+  compliance_ = std::move(compliance);
+  compliance_scale_ = scale;
 }
 
 void DisplacementDrive::plan(const Inputs& inputs, const NodeDisplacements& converged) {
@@ -196,27 +213,146 @@ std::vector<std::vector<std::int64_t>> DisplacementDrive::driven_lines() const {
 
 std::map<std::int64_t, double> DisplacementDrive::moves_by_line(
     const std::map<std::int64_t, double>& imbalance) const {
-  std::map<std::int64_t, double> moves;
-  for (const auto& line : driven_lines()) {
-    double force = 0.0, weight = 0.0, stiffness = 0.0;
-    for (const auto node : line) {
-      force += imbalance.at(node);
+  const auto lines = driven_lines();
+  const auto count = static_cast<Eigen::Index>(lines.size());
+  Eigen::VectorXd force = Eigen::VectorXd::Zero(count), weight = Eigen::VectorXd::Zero(count),
+                  film = Eigen::VectorXd::Zero(count);
+  for (Eigen::Index i = 0; i < count; ++i) {
+    double stiffness = 0.0;
+    for (const auto node : lines[static_cast<std::size_t>(i)]) {
+      force[i] += imbalance.at(node);
       for (const auto f : faces_of_.at(node)) {
-        weight += weight_in(node, f);
+        weight[i] += weight_in(node, f);
         stiffness += weight_in(node, f) * film_stiffness(f);
       }
     }
     // A serendipity face's corner alone takes a negative share of a uniform traction: such a
     // node cannot move by its own imbalance (the faces' balance below can).
-    if (!(weight > 0.0)) return {};
-    const double traction = force / weight;
-    largest_imbalance_ = std::max(largest_imbalance_, std::abs(traction));
+    if (!(weight[i] > 0.0)) return {};
+    largest_imbalance_ = std::max(largest_imbalance_, std::abs(force[i] / weight[i]));
     // The film's stiffness over the line's faces, weighted as the traction is (a corner's
     // negative weight could take it below zero next to a steep pressure drop: not below).
-    const double film = std::max(0.0, stiffness / weight);
-    for (const auto node : line) moves[node] = traction / (film + surface_stiffness_);
+    film[i] = std::max(0.0, stiffness / weight[i]);
   }
+  const Eigen::MatrixXd film_matrix = reynolds_film_
+                                          ? reynolds_film_stiffness(lines)
+                                          : Eigen::MatrixXd(weight.cwiseProduct(film).asDiagonal());
+  const Eigen::VectorXd move = line_moves(lines, force, weight, film_matrix);
+  std::map<std::int64_t, double> moves;
+  for (Eigen::Index i = 0; i < count; ++i)
+    for (const auto node : lines[static_cast<std::size_t>(i)]) moves[node] = move[i];
   return moves;
+}
+
+Eigen::VectorXd DisplacementDrive::line_moves(const std::vector<std::vector<std::int64_t>>& lines,
+                                              const Eigen::VectorXd& force,
+                                              const Eigen::VectorXd& weight,
+                                              const Eigen::MatrixXd& film) const {
+  if (!compliance_) {
+    Eigen::MatrixXd system = film;
+    system.diagonal() += surface_stiffness_ * weight;
+    return system.partialPivLu().solve(force);
+  }
+  // (K_film + C^-1) d = F  <=>  (I + C K_film) d = C F, C the driven lines' compliance (the
+  // others loaded, as ccx has them): no inverse of C, and K_film = 0 stays well posed.
+  std::vector<Eigen::Index> rows;
+  for (const auto& line : lines) {
+    rows.push_back(*compliance_->row_of(line.front()));
+    for (const auto node : line)
+      if (compliance_->row_of(node) != rows.back())
+        throw DeckError(
+            fmt::format("nodes {} and {} move as one line, but the surface compliance has them in "
+                        "different lines",
+                        line.front(), node));
+  }
+  const Eigen::MatrixXd compliance = compliance_scale_ * compliance_->block(rows);
+  Eigen::MatrixXd system = compliance * film;
+  system.diagonal().array() += 1.0;
+  return system.partialPivLu().solve(compliance * force);
+}
+
+double DisplacementDrive::axial_position(std::int64_t node) const {
+  const NodalTransform* transform = deck_.transform(node);
+  if (transform == nullptr || transform->type != 'C')
+    throw DeckError(fmt::format(
+        "node {} is driven but in no cylindrical *TRANSFORM: film_stiffness: reynolds takes "
+        "the film along the transform's axis",
+        node));
+  return (deck_.node(node) - transform->a).dot((transform->b - transform->a).normalized());
+}
+
+Eigen::MatrixXd DisplacementDrive::reynolds_film_stiffness(
+    const std::vector<std::vector<std::int64_t>>& lines) const {
+  // The film: every face it covers at all, along the axis. Its pressure reaches ambient where
+  // it ends, which is inside the end faces (partly covered, not driven): a chain of driven
+  // faces alone would put ambient pressure under the bearing's full pressure.
+  std::vector<FilmFace> faces;
+  for (std::size_t f = 0; f < driven_face_.size(); ++f) {
+    const auto row = static_cast<Eigen::Index>(f);
+    if (!(inputs_.coverage[row] > 0.0) || !(inputs_.gap[row] > 0.0)) continue;
+    FilmFace face{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+                  f};
+    for (const auto node : loads_.geometry()[f].nodes) {
+      face.start = std::min(face.start, axial_position(node));
+      face.end = std::max(face.end, axial_position(node));
+    }
+    faces.push_back(face);
+  }
+  std::sort(faces.begin(), faces.end(),
+            [](const FilmFace& x, const FilmFace& y) { return x.start < y.start; });
+  std::map<std::int64_t, Eigen::Index> line_of;
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    for (const auto node : lines[i]) line_of[node] = static_cast<Eigen::Index>(i);
+  const auto count = static_cast<Eigen::Index>(lines.size());
+  Eigen::MatrixXd stiffness = Eigen::MatrixXd::Zero(count, count);
+  reynolds_misfit_ = 0.0;
+  // Runs of faces that touch along the axis: one film each.
+  std::size_t first = 0;
+  while (first < faces.size()) {
+    std::size_t last = first + 1;
+    const double tolerance = 1e-6 * (faces[first].end - faces[first].start);
+    while (last < faces.size() && faces[last].start <= faces[last - 1].end + tolerance) ++last;
+    const std::vector<FilmFace> run(faces.begin() + static_cast<std::ptrdiff_t>(first),
+                                    faces.begin() + static_cast<std::ptrdiff_t>(last));
+    first = last;
+    if (run.size() < 2) continue;  // a face alone: no film to speak of
+    stiffness += film_run_stiffness(run, line_of, count);
+  }
+  return stiffness;
+}
+
+Eigen::MatrixXd DisplacementDrive::film_run_stiffness(
+    const std::vector<FilmFace>& run, const std::map<std::int64_t, Eigen::Index>& line_of,
+    Eigen::Index lines) const {
+  const auto n = static_cast<Eigen::Index>(run.size());
+  Eigen::VectorXd position(n), length(n), gap(n), pressure(n), inverse_area(n);
+  Eigen::MatrixXd weight = Eigen::MatrixXd::Zero(n, lines);  // face x line
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const FilmFace& face = run[static_cast<std::size_t>(k)];
+    const auto row = static_cast<Eigen::Index>(face.index);
+    // The mapped values are means over the whole face, zero where the film is not: the film's
+    // own are those over the covered part, which lies towards the run's inside.
+    const double covered = std::min(1.0, inputs_.coverage[row]);
+    double start = face.start, end = face.end;
+    if (k == 0) start = end - covered * (end - start);
+    if (k == n - 1) end = start + covered * (end - start);
+    position[k] = 0.5 * (start + end);
+    length[k] = end - start;
+    gap[k] = inputs_.gap[row] / covered;
+    pressure[k] = inputs_.pressure[row] / covered;
+    const auto& geometry = loads_.geometry()[face.index];
+    inverse_area[k] = 1.0 / (covered * geometry.area);
+    for (std::size_t m = 0; m < geometry.nodes.size(); ++m) {
+      const auto line = line_of.find(geometry.nodes[m]);
+      if (line != line_of.end())
+        weight(k, line->second) += geometry.weights[static_cast<Eigen::Index>(m)];
+    }
+  }
+  const ReynoldsFilm film(position, length, gap, pressure);
+  reynolds_misfit_ = std::max(reynolds_misfit_, film.misfit());
+  // A line's move d changes face g's mean gap by -weight(g, line) d / area_g, and a face's
+  // pressure change dp_f pushes line i by -weight(f, i) dp_f: K = -W^T (dp/dh) diag(1/A) W.
+  return -weight.transpose() * film.pressure_gradient() * inverse_area.asDiagonal() * weight;
 }
 
 std::map<std::int64_t, double> DisplacementDrive::moves_by_face(

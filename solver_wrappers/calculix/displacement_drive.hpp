@@ -20,11 +20,17 @@
 //      K_film = 2 p / gap (a lubricant film's pressure goes as 1 / gap^2) and K_structure the
 //      case's `surface_stiffness`. Where a line's share is negative (a serendipity face's
 //      corner alone), per face instead: the face's imbalance, nodes moved by their faces'.
+//      With a surface compliance (use_compliance()), the lines move together instead:
+//      (K_film + K_structure) d = F over the driven lines, K_structure the inverse of their
+//      compliance (the other lines loaded), K_film diagonal as above, F the lines' imbalances.
+//      With use_reynolds_film(), K_film couples the lines too: a thin film's pressure answers
+//      a gap change along the whole film (reynolds_film.hpp), not at the face alone.
 // ccx's reactions are the nodal forces only on 3D models: on an axisymmetric (CAX) one they
 // are off by up to 53 % (examples/wire_drawing/reaction_probe.py), so the wrapper refuses it.
 #include <Eigen/Core>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <ostream>
 #include <set>
 #include <string>
@@ -33,6 +39,7 @@
 #include "core/data/interface.hpp"
 #include "solver_wrappers/calculix/input_deck.hpp"
 #include "solver_wrappers/calculix/interface_loads.hpp"
+#include "solver_wrappers/calculix/surface_compliance.hpp"
 
 namespace cocopp::calculix {
 
@@ -52,6 +59,18 @@ class DisplacementDrive {
   DisplacementDrive(const InputDeck& deck, InterfaceLoads& loads,
                     std::vector<std::int64_t> interface_nodes,
                     std::vector<std::int64_t> drivable_nodes, int dof, double surface_stiffness);
+
+  /// The Newton step takes the structure's stiffness between the driven lines from
+  /// `compliance` (times `scale`: above 1 for a body softer than the compliance's, a yielding
+  /// one) instead of `surface_stiffness` per line. Every drivable node must be in one of its
+  /// lines (throws DeckError naming the first that is not).
+  void use_compliance(SurfaceCompliance compliance, double scale);
+  /// The film's stiffness between the driven lines from Reynolds' equation on the covered
+  /// faces' gaps, fitted to the film's pressure (reynolds_film.hpp), instead of 2 p / gap per
+  /// line. Needs the driven nodes in a cylindrical *TRANSFORM (its axis is the film's).
+  void use_reynolds_film() { reynolds_film_ = true; }
+  /// The largest misfit of the Reynolds model to the film's pressure in the last balance().
+  double reynolds_misfit() const { return reynolds_misfit_; }
 
   /// This iteration's inputs (from the wrapper's input interface): one row per interface face,
   /// and the wall displacement one per drivable node. The loads are either the pressure and
@@ -107,6 +126,26 @@ class DisplacementDrive {
   /// line's nodes take a negative share of a uniform traction), or on each face's.
   std::map<std::int64_t, double> moves_by_line(
       const std::map<std::int64_t, double>& imbalance) const;
+  /// The lines' moves from their forces, weights and film stiffnesses: each line alone, or
+  /// all together through the compliance.
+  Eigen::VectorXd line_moves(const std::vector<std::vector<std::int64_t>>& lines,
+                             const Eigen::VectorXd& force, const Eigen::VectorXd& weight,
+                             const Eigen::MatrixXd& film) const;
+  /// The film's stiffness between the lines (N/m, the force on line i per move of line j):
+  /// Reynolds' equation over each run of driven faces along the axis.
+  Eigen::MatrixXd reynolds_film_stiffness(
+      const std::vector<std::vector<std::int64_t>>& lines) const;
+  /// A face the film covers, its extent along the axis.
+  struct FilmFace {
+    double start, end;
+    std::size_t index;
+  };
+  /// The stiffness one run of touching faces gives (reynolds_film_stiffness()).
+  Eigen::MatrixXd film_run_stiffness(const std::vector<FilmFace>& run,
+                                     const std::map<std::int64_t, Eigen::Index>& line_of,
+                                     Eigen::Index lines) const;
+  /// A node's position along the axis of its cylindrical *TRANSFORM (the deck's geometry).
+  double axial_position(std::int64_t node) const;
   std::map<std::int64_t, double> moves_by_face(
       const std::map<std::int64_t, double>& imbalance) const;
   std::vector<std::string> model_boundary_cards(const InputDeck& deck) const;
@@ -116,6 +155,10 @@ class DisplacementDrive {
   std::vector<std::int64_t> interface_nodes_, drivable_nodes_;
   int dof_;
   double surface_stiffness_;
+  std::optional<SurfaceCompliance> compliance_;
+  double compliance_scale_ = 1.0;
+  bool reynolds_film_ = false;
+  mutable double reynolds_misfit_ = 0.0;
   std::vector<std::string> model_boundary_;
   /// Per node: the faces it belongs to.
   std::map<std::int64_t, std::vector<std::size_t>> faces_of_;
