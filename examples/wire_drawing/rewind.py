@@ -1,0 +1,82 @@
+#!/usr/bin/python3
+"""A copy of a wire drawing run that restarts after an earlier step: to measure a coupling
+variant on the same steps from the same state (docs/wire-drawing.md, "Fewer coupling
+iterations").
+
+    /usr/bin/python3 examples/wire_drawing/rewind.py examples/wire_drawing/results/final 65 \\
+        examples/wire_drawing/results/from65 --steps 72
+    build/bin/cocopp run examples/wire_drawing/results/from65/case.yaml --restart
+
+The copy holds the case file (number_of_timesteps set to --steps), the film's case with its
+time directories up to the step, the wire's deck and its restart files up to the step (saved
+every state_interval steps: the step must be one of them), the results file, and a state file
+for the step (cocopp.state.rewind_state: the predictor's history from the results file). The
+run must not carry secant columns between steps (the case's IQN-ILS has none)."""
+import argparse
+import re
+import shutil
+import sys
+from pathlib import Path
+
+from cocopp.state import rewind_state
+
+
+def copy_film(source, target, last_time):
+    """The film's case without the time directories after `last_time`."""
+    def later(directory, names):
+        return [n for n in names if directory == str(source) and is_later(n, last_time)]
+    shutil.copytree(source, target, ignore=later)
+
+
+def is_later(name, last_time):
+    try:
+        return float(name) > last_time * (1 + 1e-9)
+    except ValueError:
+        return False
+
+
+def copy_wire(source, target, step):
+    """The wire's directory without its results and with restart files up to `step`."""
+    def skipped(directory, names):
+        if directory == str(source):
+            return [n for n in names if n == "results" or n.startswith("cocopp_iteration")]
+        if directory == str(source / "restart"):
+            return [n for n in names
+                    if (m := re.search(r"_(\d+)\.r", n)) and int(m.group(1)) > step]
+        return []
+    shutil.copytree(source, target, ignore=skipped)
+    restart = target / "restart"
+    if not any(restart.glob(f"*_{step:06d}.restart")):
+        sys.exit(f"rewind.py: {source / 'restart'} has no restart file for step {step} "
+                 "(saved every state_interval steps)")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("run", type=Path, help="a run's case directory (results/<name>)")
+    parser.add_argument("step", type=int, help="the step to restart after")
+    parser.add_argument("target", type=Path, help="the new case directory")
+    parser.add_argument("--steps", type=int, help="the copy's number_of_timesteps")
+    args = parser.parse_args()
+    if args.target.exists():
+        sys.exit(f"rewind.py: {args.target} exists")
+    case = (args.run / "case.yaml").read_text()
+    delta_t = float(re.search(r"delta_t:\s*(\S+)", case).group(1))
+    args.target.mkdir(parents=True)
+    if args.steps:
+        case = re.sub(r"(number_of_timesteps:\s*)\d+", rf"\g<1>{args.steps}", case)
+    (args.target / "case.yaml").write_text(case)
+    shutil.copy(args.run / "made_with.yaml", args.target)
+    copy_film(args.run / "fluid", args.target / "fluid", args.step * delta_t)
+    copy_wire(args.run / "structure", args.target / "structure", args.step)
+    results = args.target / "results"
+    results.mkdir()
+    shutil.copy(args.run / "results" / "case.h5", results)
+    rewind_state(results / "case.h5", args.run / "results" / "case.state.h5", args.step,
+                 results / "case.state.h5")
+    print(f"{args.target}: restarts after step {args.step}: "
+          f"cocopp run {args.target / 'case.yaml'} --restart")
+
+
+if __name__ == "__main__":
+    main()
