@@ -7,6 +7,11 @@ iterations").
         examples/wire_drawing/results/from65 --steps 72
     build/bin/cocopp run examples/wire_drawing/results/from65/case.yaml --restart
 
+--wire KEY=VALUE adds a key to the calculix wrapper's settings (repeatable), --omega sets the
+coupled solver's first relaxation, and --compliance writes the wire's surface compliance
+(surface_compliance.py) and uses it (surface_compliance: surface_compliance.txt): the drive
+variants of docs/wire-drawing.md, "Fewer coupling iterations".
+
 The copy holds the case file (number_of_timesteps set to --steps), the film's case with its
 time directories up to the step, the wire's deck and its restart files up to the step (saved
 every state_interval steps: the step must be one of them), the results file, and a state file
@@ -18,7 +23,9 @@ import shutil
 import sys
 from pathlib import Path
 
+from cocopp.executable import patched_ccx
 from cocopp.state import rewind_state
+from surface_compliance import compliance, write
 
 
 def copy_film(source, target, last_time):
@@ -57,6 +64,11 @@ def main():
     parser.add_argument("step", type=int, help="the step to restart after")
     parser.add_argument("target", type=Path, help="the new case directory")
     parser.add_argument("--steps", type=int, help="the copy's number_of_timesteps")
+    parser.add_argument("--wire", action="append", default=[], metavar="KEY=VALUE",
+                        help="a key of the calculix wrapper's settings (repeatable)")
+    parser.add_argument("--omega", type=float, help="the coupled solver's omega")
+    parser.add_argument("--compliance", action="store_true",
+                        help="compute the wire's surface compliance and drive with it")
     args = parser.parse_args()
     if args.target.exists():
         sys.exit(f"rewind.py: {args.target} exists")
@@ -65,10 +77,26 @@ def main():
     args.target.mkdir(parents=True)
     if args.steps:
         case = re.sub(r"(number_of_timesteps:\s*)\d+", rf"\g<1>{args.steps}", case)
+    if args.omega is not None:
+        case = re.sub(r"(\n  omega:\s*)[0-9.e+-]+", rf"\g<1>{args.omega}", case, count=1)
+    keys = list(args.wire) + (["surface_compliance=surface_compliance.txt"] if args.compliance
+                              else [])
+    for key in keys:
+        name, _, value = key.partition("=")
+        if not value:
+            sys.exit(f"rewind.py: --wire {key}: give KEY=VALUE")
+        # After the wrapper's surface_stiffness, at its indentation.
+        case, found = re.subn(r"(\n( *)surface_stiffness:[^\n]*)", rf"\1\n\2{name}: {value}", case,
+                              count=1)
+        if not found:
+            sys.exit("rewind.py: the case has no surface_stiffness (is its wire driven?)")
     (args.target / "case.yaml").write_text(case)
     shutil.copy(args.run / "made_with.yaml", args.target)
     copy_film(args.run / "fluid", args.target / "fluid", args.step * delta_t)
     copy_wire(args.run / "structure", args.target / "structure", args.step)
+    if args.compliance:
+        lines, matrix, _, _ = compliance(args.target / "structure", patched_ccx())
+        write(args.target / "structure" / "surface_compliance.txt", lines, matrix)
     results = args.target / "results"
     results.mkdir()
     shutil.copy(args.run / "results" / "case.h5", results)
