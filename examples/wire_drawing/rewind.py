@@ -8,7 +8,7 @@ iterations").
     build/bin/cocopp run examples/wire_drawing/results/from65/case.yaml --restart
 
 --wire KEY=VALUE adds a key to the calculix wrapper's settings (repeatable), --omega sets the
-coupled solver's first relaxation, and --compliance writes the wire's surface compliance
+coupled solver's first relaxation, --predictor its predictor (linear, quadratic, cubic), and --compliance writes the wire's surface compliance
 (surface_compliance.py) and uses it (surface_compliance: surface_compliance.txt): the drive
 variants of docs/wire-drawing.md, "Fewer coupling iterations".
 
@@ -26,6 +26,10 @@ from pathlib import Path
 from cocopp.executable import patched_ccx
 from cocopp.state import rewind_state
 from surface_compliance import compliance, write
+
+
+# The converged steps each predictor extrapolates from.
+HISTORY = {"constant": 1, "linear": 2, "legacy": 2, "quadratic": 3, "cubic": 4}
 
 
 def copy_film(source, target, last_time):
@@ -67,6 +71,7 @@ def main():
     parser.add_argument("--wire", action="append", default=[], metavar="KEY=VALUE",
                         help="a key of the calculix wrapper's settings (repeatable)")
     parser.add_argument("--omega", type=float, help="the coupled solver's omega")
+    parser.add_argument("--predictor", choices=sorted(HISTORY), help="the predictor")
     parser.add_argument("--compliance", action="store_true",
                         help="compute the wire's surface compliance and drive with it")
     args = parser.parse_args()
@@ -77,6 +82,8 @@ def main():
     args.target.mkdir(parents=True)
     if args.steps:
         case = re.sub(r"(number_of_timesteps:\s*)\d+", rf"\g<1>{args.steps}", case)
+    if args.predictor:
+        case = re.sub(r"(\n  predictor:\n    type:\s*)\w+", rf"\g<1>{args.predictor}", case, count=1)
     if args.omega is not None:
         case = re.sub(r"(\n  omega:\s*)[0-9.e+-]+", rf"\g<1>{args.omega}", case, count=1)
     keys = list(args.wire) + (["surface_compliance=surface_compliance.txt"] if args.compliance
@@ -101,7 +108,7 @@ def main():
     results.mkdir()
     shutil.copy(args.run / "results" / "case.h5", results)
     rewind_state(results / "case.h5", args.run / "results" / "case.state.h5", args.step,
-                 results / "case.state.h5")
+                 results / "case.state.h5", HISTORY.get(args.predictor))
     print(f"{args.target}: restarts after step {args.step}: "
           f"cocopp run {args.target / 'case.yaml'} --restart")
 

@@ -24,10 +24,11 @@ def first_residuals(results, step):
             if number <= step and len(norms)]
 
 
-def rewind_state(results_file, state_file, step, output):
+def rewind_state(results_file, state_file, step, output, history_length=None):
     """Write to `output` the state after `step` of the run whose results and state files are
-    given: the later state's attributes, the predictor's history of x from the results file,
-    the largest first residual up to `step`, no model memory. Refuses a state whose coupled
+    given: the later state's attributes, the predictor's history of x from the results file
+    (`history_length` steps, default the later state's), the largest first residual up to
+    `step`, no model memory. Refuses a state whose coupled
     solver carries memory between steps (secant columns, a Jacobian, Aitken's factor)."""
     with h5py.File(state_file, "r") as later, ResultsFile(results_file) as results:
         if step not in list(results.steps):
@@ -44,7 +45,7 @@ def rewind_state(results_file, state_file, step, output):
         if len(parts) != 1:
             raise StateError(f"{results_file}: x has {len(parts)} model parts; rewinding "
                              "knows the order of one")
-        history_length = later["predictor/history"].shape[1]
+        history_length = history_length or later["predictor/history"].shape[1]
         steps = [s for s in range(step, step - history_length, -1) if s in results.steps]
         x = results.values("x", parts[0], "displacement")
         history = np.stack([x[results.row(s)].reshape(-1) for s in steps], axis=1)

@@ -120,6 +120,7 @@ CalculixSolverWrapper::CalculixSolverWrapper(const Settings& settings, const Run
                     "in Pa/m (about its Young's modulus over the faces' length), > 0");
     reynolds_film_ =
         settings.get_choice("film_stiffness", "local", {"local", "reynolds"}) == "reynolds";
+    drive_log_ = settings.get<std::string>("drive_log", "");
     if (settings.has("surface_compliance")) {
       surface_compliance_file_ = settings.required<std::string>("surface_compliance");
       surface_compliance_scale_ =
@@ -308,6 +309,10 @@ void CalculixSolverWrapper::read_deck() {
             calculix::SurfaceCompliance::read(model_.file(surface_compliance_file_)),
             surface_compliance_scale_);
       if (reynolds_film_) drive_->use_reynolds_film();
+      if (!drive_log_.empty()) {
+        std::filesystem::remove(model_.file(drive_log_));
+        drive_->log_to(model_.file(drive_log_));
+      }
     }
   } catch (const calculix::DeckError& e) {
     throw CaseError(input_file_where_ + ": solver '" + model_.name + "': " + e.what());
@@ -345,6 +350,7 @@ void CalculixSolverWrapper::build_interfaces() {
 
 void CalculixSolverWrapper::initialize_step(int step, double time) {
   model_.step = step;
+  if (drive_) drive_->start_step(step);
   model_.iteration = 0;
   mode_->initialize_step(step, time);
 }

@@ -82,6 +82,7 @@ class CalculixSolverWrapper : public SolverWrapper {
   std::string surface_compliance_file_;  ///< empty: the drive's stiffness per line
   double surface_compliance_scale_ = 1.0;
   bool reynolds_film_ = false;  ///< film_stiffness: reynolds
+  std::string drive_log_;       ///< drive_log: the drive's lines per iteration (empty: none)
   std::vector<std::int64_t> driven_node_set_;
   std::unique_ptr<calculix::DisplacementDrive> drive_;
   // mode

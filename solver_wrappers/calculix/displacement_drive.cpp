@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <stdexcept>
 #include <tuple>
@@ -238,10 +239,28 @@ std::map<std::int64_t, double> DisplacementDrive::moves_by_line(
                                           ? reynolds_film_stiffness(lines)
                                           : Eigen::MatrixXd(weight.cwiseProduct(film).asDiagonal());
   const Eigen::VectorXd move = line_moves(lines, force, weight, film_matrix);
+  if (!log_file_.empty()) log_lines(lines, force, weight, film, move);
   std::map<std::int64_t, double> moves;
   for (Eigen::Index i = 0; i < count; ++i)
     for (const auto node : lines[static_cast<std::size_t>(i)]) moves[node] = move[i];
   return moves;
+}
+
+void DisplacementDrive::log_lines(const std::vector<std::vector<std::int64_t>>& lines,
+                                  const Eigen::VectorXd& force, const Eigen::VectorXd& weight,
+                                  const Eigen::VectorXd& film, const Eigen::VectorXd& move) const {
+  std::ofstream out(log_file_, std::ios::app);
+  out << fmt::format("# step {} iteration {}\n", log_step_, ++log_iteration_);
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const auto node = lines[i].front();
+    const auto k = static_cast<Eigen::Index>(i);
+    const NodalTransform* transform = deck_.transform(node);
+    const double axial = transform != nullptr && transform->type == 'C' ? axial_position(node)
+                                                                        : deck_.node(node).z();
+    out << fmt::format("{} {:.9e} {:.9e} {:.9e} {:.9e} {:.9e} {:.9e}\n", node, axial,
+                       prescribed_.at(node), force[k], weight[k], film[k], move[k]);
+  }
+  if (!out) throw std::runtime_error("cannot write the drive log " + log_file_.string());
 }
 
 Eigen::VectorXd DisplacementDrive::line_moves(const std::vector<std::vector<std::int64_t>>& lines,

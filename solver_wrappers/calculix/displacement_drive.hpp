@@ -29,6 +29,7 @@
 // are off by up to 53 % (examples/wire_drawing/reaction_probe.py), so the wrapper refuses it.
 #include <Eigen/Core>
 #include <cstdint>
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <ostream>
@@ -69,6 +70,16 @@ class DisplacementDrive {
   /// faces' gaps, fitted to the film's pressure (reynolds_film.hpp), instead of 2 p / gap per
   /// line. Needs the driven nodes in a cylindrical *TRANSFORM (its axis is the film's).
   void use_reynolds_film() { reynolds_film_ = true; }
+  /// Append each balance()'s lines to `file` (`drive_log`): a block "# step S iteration K" and
+  /// per driven line its first node, axial position, prescribed value, imbalance (N), weight
+  /// (m^2), the film's local stiffness 2 p / gap (Pa/m) and its move: what a model of the
+  /// interface's Jacobian can be checked against (examples/wire_drawing/drive_pairs.py).
+  void log_to(std::filesystem::path file) { log_file_ = std::move(file); }
+  /// A new time step: the log's iterations count from 1 again.
+  void start_step(int step) {
+    log_step_ = step;
+    log_iteration_ = 0;
+  }
   /// The largest misfit of the Reynolds model to the film's pressure in the last balance().
   double reynolds_misfit() const { return reynolds_misfit_; }
 
@@ -131,6 +142,9 @@ class DisplacementDrive {
   Eigen::VectorXd line_moves(const std::vector<std::vector<std::int64_t>>& lines,
                              const Eigen::VectorXd& force, const Eigen::VectorXd& weight,
                              const Eigen::MatrixXd& film) const;
+  void log_lines(const std::vector<std::vector<std::int64_t>>& lines, const Eigen::VectorXd& force,
+                 const Eigen::VectorXd& weight, const Eigen::VectorXd& film,
+                 const Eigen::VectorXd& move) const;
   /// The film's stiffness between the lines (N/m, the force on line i per move of line j):
   /// Reynolds' equation over each run of driven faces along the axis.
   Eigen::MatrixXd reynolds_film_stiffness(
@@ -158,6 +172,9 @@ class DisplacementDrive {
   std::optional<SurfaceCompliance> compliance_;
   double compliance_scale_ = 1.0;
   bool reynolds_film_ = false;
+  std::filesystem::path log_file_;
+  int log_step_ = 0;
+  mutable int log_iteration_ = 0;
   mutable double reynolds_misfit_ = 0.0;
   std::vector<std::string> model_boundary_;
   /// Per node: the faces it belongs to.

@@ -10,7 +10,9 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
 
 #include "solver_wrappers/calculix/displacement_drive.hpp"
@@ -203,6 +205,34 @@ TEST_F(DriveCompliance, RefusesAFileWithoutADrivableNode) {
   const std::string message = error_message<DeckError>(
       [&] { drive->use_compliance(SurfaceCompliance::read(directory_ / "compliance.txt"), 1.0); });
   EXPECT_NE(message.find("node " + first + "may be driven"), std::string::npos) << message;
+}
+
+TEST_F(DriveCompliance, TheLogHasEachIterationsLines) {
+  // drive_log: per balance, a header and per driven line its node, axial position, prescribed
+  // value, imbalance, weight, film stiffness and move (what drive_pairs.py reads).
+  auto drive = this->drive();
+  drive->log_to(directory_ / "drive.log");
+  drive->start_step(3);
+  step(*drive, balance());
+  step(*drive, balance());
+  std::ifstream log(directory_ / "drive.log");
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(log, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 2 * (lines_.size() + 1));
+  EXPECT_EQ(lines[0], "# step 3 iteration 1");
+  EXPECT_EQ(lines[lines_.size() + 1], "# step 3 iteration 2");
+  std::istringstream first(lines[1]);
+  double node = 0, axial = 0, prescribed = 0;
+  first >> node >> axial >> prescribed;
+  // A line is named by one of its nodes.
+  const auto id = static_cast<std::int64_t>(node);
+  EXPECT_TRUE(std::any_of(lines_.begin(), lines_.end(),
+                          [&](const auto& line) {
+                            return std::find(line.second.begin(), line.second.end(), id) !=
+                                   line.second.end();
+                          }))
+      << "node " << id;
+  EXPECT_NEAR(prescribed, this->prescribed(*drive, id), 1e-9 * kWall);
 }
 
 TEST(SurfaceComplianceFile, ErrorsNameTheFileAndLine) {
