@@ -129,6 +129,26 @@ def compliance(structure, ccx):
     return lines, 0.5 * (matrix + matrix.T), column, sources
 
 
+def uniform_pressure_check(text, lines, matrix):
+    """The compliance's answer to a uniform radial pressure of 1 Pa at the middle line, against
+    a long solid cylinder's u = p R (1 - nu) / E (free to stretch, so plane stress along the
+    axis): its relative difference. The pressure's line forces are its uniform traction's: a
+    mid-side line 2/3 of its element's area, a corner line 1/3 of one element's (1/6 of each of
+    its two)."""
+    nodes = deck_nodes(text)
+    young, poisson = [float(v) for v in re.search(r"^\*ELASTIC\s*\n([^\n]+)", text,
+                                                  re.M | re.I).group(1).split(",")[:2]]
+    first = lines[0][1][0]
+    radius = np.hypot(nodes[first][0], nodes[first][2])
+    angle = max(abs(np.arctan2(nodes[n][2], nodes[n][0])) for _, line in lines for n in line)
+    element = 2 * (lines[1][0] - lines[0][0])  # axial length of an element (uniform)
+    area = element * radius * angle
+    weight = np.array([area / 3 if len(line) == 3 else 2 * area / 3 for _, line in lines])
+    middle = len(lines) // 2
+    expected = radius * (1 - poisson) / young
+    return (matrix[middle] @ weight - expected) / expected
+
+
 def write(path, lines, matrix):
     with open(path, "w") as out:
         out.write("# cocopp surface compliance (docs/solver-wrappers-calculix.md): the driven\n"
@@ -150,6 +170,12 @@ def main():
     args = parser.parse_args()
     structure = args.case / "structure"
     lines, matrix, column, sources = compliance(structure, args.ccx or patched_ccx())
+    check = uniform_pressure_check((structure / "wire.inp").read_text(), lines, matrix)
+    print(f"uniform pressure: the compliance's answer {check:+.2e} from the solid cylinder's "
+          "p R (1 - nu) / E")
+    if abs(check) > 1e-2:
+        sys.exit("surface_compliance.py: the compliance misses a uniform pressure's answer by "
+                 "more than 1 %: not written")
     write(structure / "surface_compliance.txt", lines, matrix)
     pitch = lines[1][0] - lines[0][0]
     for kind, source, values in zip(("corner", "mid-side"), sources, column):

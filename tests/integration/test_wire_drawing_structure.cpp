@@ -8,7 +8,9 @@
 
 #include <cmath>
 
+#include "solver_wrappers/calculix/surface_compliance.hpp"
 #include "solver_wrappers/solver_wrapper.hpp"
+#include "tests/support/run_in.hpp"
 #include "tests/support/solver_wrapper_case.hpp"
 #include "tests/support/wire_drawing_case.hpp"
 
@@ -65,6 +67,33 @@ TEST(WireDrawingStructure, TheSectorWireIsTheSameBar) {
       "--set mesh.wire_radial_elements=4 "
       "--set mesh.wire_axial_elements=153",
       153);
+}
+
+// examples/wire_drawing/surface_compliance.py (the drive's `surface_compliance`) on the coarse
+// sector: every surface line in the file, a symmetric compliance, and its answer to a uniform
+// pressure within 5e-3 of the solid cylinder's u = p R (1 - nu) / E (the script refuses 1e-2).
+TEST(WireDrawingStructure, TheSurfaceComplianceAnswersAUniformPressure) {
+  testing::TemporaryDirectory directory;
+  testing::write_wire_drawing_case(
+      directory.path(), "--set mesh.wire_radial_elements=4 --set mesh.wire_axial_elements=153",
+      /*mesh_film=*/false);
+  testing::run_in(directory.path(),
+                  "/usr/bin/python3 " +
+                      (testing::kWireDrawingExample / "surface_compliance.py").string() + " .");
+  const std::string log = testing::read_text(directory / "log.setup");
+  const auto at = log.find("the compliance's answer ");
+  ASSERT_NE(at, std::string::npos) << log;
+  const double difference =
+      std::stod(log.substr(at + std::string("the compliance's answer ").size()));
+  EXPECT_LT(std::abs(difference), 5e-3) << log;
+  const auto compliance =
+      calculix::SurfaceCompliance::read(directory / "structure" / "surface_compliance.txt");
+  EXPECT_EQ(compliance.lines(), 2 * 153 + 1);
+  std::vector<Eigen::Index> all(static_cast<std::size_t>(compliance.lines()));
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<Eigen::Index>(i);
+  const Eigen::MatrixXd matrix = compliance.block(all);
+  EXPECT_LT((matrix - matrix.transpose()).cwiseAbs().maxCoeff(), 1e-12 * matrix.maxCoeff());
+  EXPECT_GT(matrix.diagonal().minCoeff(), 0.0);
 }
 
 }  // namespace
