@@ -487,7 +487,7 @@ def case_file(p):
     coupled_solver["convergence_criterion"] = {"type": "or", "criteria": [
         {"type": case.commented("absolute_norm", "the paper's 0.01 um on the 2-norm of the "
                                                  "displacement residual"),
-         "tolerance": 1.0e-8},
+         "tolerance": coupling["tolerance"]},
         {"type": "iteration_limit", "maximum": coupling["max_iterations"]}]}
     settings = {"delta_t": time["delta_t"], "number_of_timesteps": total_steps(p),
                 "state_interval": case.commented(time["state_interval"], "a state to restart "
