@@ -250,7 +250,9 @@ void DisplacementDrive::log_lines(const std::vector<std::vector<std::int64_t>>& 
                                   const Eigen::VectorXd& force, const Eigen::VectorXd& weight,
                                   const Eigen::VectorXd& film, const Eigen::VectorXd& move) const {
   std::ofstream out(log_file_, std::ios::app);
-  out << fmt::format("# step {} iteration {}\n", log_step_, ++log_iteration_);
+  out << fmt::format("# step {} iteration {}", log_step_, ++log_iteration_);
+  if (reynolds_film_) out << fmt::format(" reynolds_misfit {:.3f}", reynolds_misfit_);
+  out << "\n";
   for (std::size_t i = 0; i < lines.size(); ++i) {
     const auto node = lines[i].front();
     const auto k = static_cast<Eigen::Index>(i);

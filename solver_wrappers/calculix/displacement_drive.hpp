@@ -70,10 +70,11 @@ class DisplacementDrive {
   /// faces' gaps, fitted to the film's pressure (reynolds_film.hpp), instead of 2 p / gap per
   /// line. Needs the driven nodes in a cylindrical *TRANSFORM (its axis is the film's).
   void use_reynolds_film() { reynolds_film_ = true; }
-  /// Append each balance()'s lines to `file` (`drive_log`): a block "# step S iteration K" and
-  /// per driven line its first node, axial position, prescribed value, imbalance (N), weight
-  /// (m^2), the film's local stiffness 2 p / gap (Pa/m) and its move: what a model of the
-  /// interface's Jacobian can be checked against (examples/wire_drawing/drive_pairs.py).
+  /// Append each balance()'s lines to `file` (`drive_log`): a block "# step S iteration K" (and
+  /// "reynolds_misfit M" with the Reynolds film), then per driven line one of its nodes, its
+  /// axial position, prescribed value, imbalance (N), weight (m^2), the film's local stiffness
+  /// 2 p / gap (Pa/m) and its move: what a model of the interface's Jacobian can be checked
+  /// against (examples/wire_drawing/drive_pairs.py).
   void log_to(std::filesystem::path file) { log_file_ = std::move(file); }
   /// A new time step: the log's iterations count from 1 again.
   void start_step(int step) {
