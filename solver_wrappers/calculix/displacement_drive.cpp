@@ -235,10 +235,13 @@ std::map<std::int64_t, double> DisplacementDrive::moves_by_line(
     // negative weight could take it below zero next to a steep pressure drop: not below).
     film[i] = std::max(0.0, stiffness / weight[i]);
   }
-  const Eigen::MatrixXd film_matrix = reynolds_film_
-                                          ? reynolds_film_stiffness(lines)
-                                          : Eigen::MatrixXd(weight.cwiseProduct(film).asDiagonal());
-  const Eigen::VectorXd move = line_moves(lines, force, weight, film_matrix);
+  // Each line alone (the drive's own step, to the last bit), or all together.
+  const Eigen::VectorXd move =
+      !compliance_ && !reynolds_film_
+          ? Eigen::VectorXd((force.array() / weight.array()) / (film.array() + surface_stiffness_))
+          : line_moves(lines, force, weight,
+                       reynolds_film_ ? reynolds_film_stiffness(lines)
+                                      : Eigen::MatrixXd(weight.cwiseProduct(film).asDiagonal()));
   if (!log_file_.empty()) log_lines(lines, force, weight, film, move);
   std::map<std::int64_t, double> moves;
   for (Eigen::Index i = 0; i < count; ++i)
