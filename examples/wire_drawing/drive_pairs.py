@@ -75,7 +75,7 @@ def main():
     blocks = read_log(structure / args.log)
     for step in sorted({b[0] for b in blocks}):
         its = [b for b in blocks if b[0] == step]
-        errors = {}
+        errors, shown = {}, None
         for (_, k, a), (_, _, b) in zip(its, its[1:]):
             if a.shape != b.shape or not np.array_equal(a[:, 0], b[:, 0]):
                 continue  # the driven lines changed
@@ -88,7 +88,7 @@ def main():
         print(f"step {step}: ||dF + K dd|| / ||dF|| for the pairs of iterations 1-2, 2-3, ...")
         for name, values in errors.items():
             print(f"  {name:38s} " + " ".join(f"{v:5.2f}" for v in values))
-        if "shown" in locals():
+        if shown is not None:
             a, dd, df = shown
             predicted = {name: -k_model @ dd
                          for name, k_model in models(a, row_of, compliance, stiffness).items()}
@@ -97,7 +97,6 @@ def main():
             for i in range(len(dd)):
                 print(f"  {a[i, 1] * 1e3:8.3f} {dd[i] * 1e9:8.2f} {df[i]:8.4f} "
                       + " ".join(f"{p[i]:8.4f}" for p in predicted.values()))
-            del shown
 
 
 if __name__ == "__main__":

@@ -25,7 +25,7 @@ from pathlib import Path
 
 from cocopp.executable import patched_ccx
 from cocopp.state import rewind_state
-from surface_compliance import compliance, write
+from surface_compliance import write_checked
 
 
 # The converged steps each predictor extrapolates from.
@@ -102,8 +102,7 @@ def main():
     copy_film(args.run / "fluid", args.target / "fluid", args.step * delta_t)
     copy_wire(args.run / "structure", args.target / "structure", args.step)
     if args.compliance:
-        lines, matrix, _, _ = compliance(args.target / "structure", patched_ccx())
-        write(args.target / "structure" / "surface_compliance.txt", lines, matrix)
+        write_checked(args.target / "structure", patched_ccx())
     results = args.target / "results"
     results.mkdir()
     shutil.copy(args.run / "results" / "case.h5", results)

@@ -26,7 +26,7 @@ import tempfile
 
 import numpy as np
 
-from cocopp.calculix import ccx_environment, dat_block, deck_nodes
+from cocopp.calculix import ccx_environment, dat_blocks, deck_nodes
 from cocopp.executable import patched_ccx
 
 
@@ -83,23 +83,9 @@ def radial(nodes, rows):
     return result
 
 
-def displacement_blocks(dat):
-    """Every 'displacements' block of a .dat file, in step order."""
-    blocks, block = [], None
-    for line in dat.read_text().splitlines():
-        if line.startswith(" displacements"):
-            block = []
-            blocks.append(block)
-        elif block is not None and line.strip():
-            block.append([float(v) for v in line.split() if v != "L"])
-        elif block:
-            block = None
-    return blocks
-
-
-def compliance(structure, ccx):
-    text = (structure / "wire.inp").read_text()
-    nodes = deck_nodes(text)
+def compliance(text, nodes, ccx):
+    """The hoop lines, their compliance matrix, and the two computed columns with their
+    lines, of the deck `text` (its nodes `nodes`), by ccx."""
     lines = hoop_lines(nodes, node_set(text, "SURFACEALL"))
     middle = len(lines) // 2
     corner = middle if len(lines[middle][1]) == 3 else middle + 1
@@ -110,7 +96,7 @@ def compliance(structure, ccx):
         (work / "elastic.inp").write_text(elastic_deck(text, shares))
         run = subprocess.run([str(ccx), "-i", "elastic"], cwd=work, capture_output=True,
                              text=True, env=ccx_environment(2))
-        blocks = displacement_blocks(work / "elastic.dat")
+        blocks = dat_blocks(work / "elastic.dat", "displacements")
         if run.returncode != 0 or len(blocks) != 2:
             sys.exit(f"surface_compliance.py: ccx failed on the elastic wire:\n{run.stdout[-2000:]}")
         responses = [radial(nodes, block) for block in blocks]
@@ -129,13 +115,12 @@ def compliance(structure, ccx):
     return lines, 0.5 * (matrix + matrix.T), column, sources
 
 
-def uniform_pressure_check(text, lines, matrix):
+def uniform_pressure_check(text, nodes, lines, matrix):
     """The compliance's answer to a uniform radial pressure of 1 Pa at the middle line, against
     a long solid cylinder's u = p R (1 - nu) / E (free to stretch, so plane stress along the
     axis): its relative difference. The pressure's line forces are its uniform traction's: a
     mid-side line 2/3 of its element's area, a corner line 1/3 of one element's (1/6 of each of
     its two)."""
-    nodes = deck_nodes(text)
     young, poisson = [float(v) for v in re.search(r"^\*ELASTIC\s*\n([^\n]+)", text,
                                                   re.M | re.I).group(1).split(",")[:2]]
     first = lines[0][1][0]
@@ -163,20 +148,30 @@ def write(path, lines, matrix):
             out.write(" ".join(f"{value:.6e}" for value in row) + "\n")
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("case", type=pathlib.Path, help="the case directory (make_case.py's)")
-    parser.add_argument("--ccx", type=pathlib.Path, default=None, help="ccx (default: patched)")
-    args = parser.parse_args()
-    structure = args.case / "structure"
-    lines, matrix, column, sources = compliance(structure, args.ccx or patched_ccx())
-    check = uniform_pressure_check((structure / "wire.inp").read_text(), lines, matrix)
+def write_checked(structure, ccx):
+    """Computes the compliance of structure/wire.inp, checks it against a uniform pressure
+    (exits if it misses by 1 %) and writes structure/surface_compliance.txt; returns what
+    compliance() does."""
+    text = (structure / "wire.inp").read_text()
+    nodes = deck_nodes(text)
+    lines, matrix, column, sources = compliance(text, nodes, ccx)
+    check = uniform_pressure_check(text, nodes, lines, matrix)
     print(f"uniform pressure: the compliance's answer {check:+.2e} from the solid cylinder's "
           "p R (1 - nu) / E")
     if abs(check) > 1e-2:
         sys.exit("surface_compliance.py: the compliance misses a uniform pressure's answer by "
                  "more than 1 %: not written")
     write(structure / "surface_compliance.txt", lines, matrix)
+    return lines, matrix, column, sources
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("case", type=pathlib.Path, help="the case directory (make_case.py's)")
+    parser.add_argument("--ccx", type=pathlib.Path, default=None, help="ccx (default: patched)")
+    args = parser.parse_args()
+    structure = args.case / "structure"
+    lines, _, column, sources = write_checked(structure, args.ccx or patched_ccx())
     pitch = lines[1][0] - lines[0][0]
     for kind, source, values in zip(("corner", "mid-side"), sources, column):
         near = values[source - 3:source + 4]

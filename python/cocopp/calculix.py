@@ -83,21 +83,28 @@ class Deck:
 
 # --- what ccx writes ------------------------------------------------------------------------
 
-def dat_block(path, title):
-    """Rows of the last block in a ccx .dat file whose header starts with `title` (e.g.
-    "displacements" for a *NODE PRINT of U, "stresses" for an *EL PRINT of S): one list of
+def dat_blocks(path, title):
+    """Every block in a ccx .dat file whose header starts with `title` (e.g. "displacements"
+    for a *NODE PRINT of U, "stresses" for an *EL PRINT of S), in the file's order: one list of
     numbers per line, the node (or element and integration point) first; the L with which ccx
-    marks values in a transformed system is dropped. None if the file has no such block."""
-    block, inside = None, False
+    marks values in a transformed system is dropped."""
+    blocks, inside = [], False
     with open(path) as f:
         for line in f:
             if line.startswith(" " + title):
-                block, inside = [], True
+                blocks.append([])
+                inside = True
             elif inside and line.strip():
-                block.append([float(v) for v in line.split() if v != "L"])
-            elif inside and block:
+                blocks[-1].append([float(v) for v in line.split() if v != "L"])
+            elif inside and blocks[-1]:
                 inside = False
-    return block
+    return blocks
+
+
+def dat_block(path, title):
+    """The last of dat_blocks(path, title), or None if the file has no such block."""
+    blocks = dat_blocks(path, title)
+    return blocks[-1] if blocks else None
 
 
 class Frd:

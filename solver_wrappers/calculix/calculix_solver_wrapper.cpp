@@ -121,11 +121,10 @@ CalculixSolverWrapper::CalculixSolverWrapper(const Settings& settings, const Run
     reynolds_film_ =
         settings.get_choice("film_stiffness", "local", {"local", "reynolds"}) == "reynolds";
     drive_log_ = settings.get<std::string>("drive_log", "");
-    if (settings.has("surface_compliance")) {
-      surface_compliance_file_ = settings.required<std::string>("surface_compliance");
+    surface_compliance_file_ = settings.get<std::string>("surface_compliance", "");
+    if (!surface_compliance_file_.empty())
       surface_compliance_scale_ =
           settings.get_in_range("surface_compliance_scale", 1.0, Range::positive());
-    }
     if (!model_.takes("pressure") && !model_.takes("force"))
       settings.fail("input_variables",
                     "interface_drive: displacement balances the other solver's pressure: "

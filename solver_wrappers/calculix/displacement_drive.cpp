@@ -317,8 +317,9 @@ Eigen::MatrixXd DisplacementDrive::reynolds_film_stiffness(
     FilmFace face{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
                   f};
     for (const auto node : loads_.geometry()[f].nodes) {
-      face.start = std::min(face.start, axial_position(node));
-      face.end = std::max(face.end, axial_position(node));
+      const double axial = axial_position(node);
+      face.start = std::min(face.start, axial);
+      face.end = std::max(face.end, axial);
     }
     faces.push_back(face);
   }
