@@ -26,10 +26,13 @@ def ccx_environment(threads, base=None):
     one each for CHOLMOD's OpenMP and OpenBLAS, which otherwise oversubscribe the machine
     (docs/solver-wrappers-calculix.md)."""
     count = str(threads)
-    return dict(os.environ if base is None else base, OMP_NUM_THREADS=count,
+    base = os.environ if base is None else base
+    # malloc asks for transparent huge pages: a fifth fewer page faults' time (ccx_run.cpp).
+    tunables = ":".join(t for t in (base.get("GLIBC_TUNABLES", ""), "glibc.malloc.hugetlb=1") if t)
+    return dict(base, OMP_NUM_THREADS=count,
                 OMP_THREAD_LIMIT="1", OPENBLAS_NUM_THREADS="1",
                 CCX_NPROC_EQUATION_SOLVER=count, CCX_NPROC_RESULTS=count,
-                CCX_NPROC_STIFFNESS=count)
+                CCX_NPROC_STIFFNESS=count, GLIBC_TUNABLES=tunables)
 
 
 def number(value):

@@ -139,6 +139,9 @@ CalculixSolverWrapper::CalculixSolverWrapper(const Settings& settings, const Run
       "previous_iteration";
   per_iteration_.initial_increment_where =
       settings.has("initial_increment") ? settings.where("initial_increment") : settings.where();
+  per_iteration_.warm_start = settings.get<bool>("warm_start", false);
+  per_iteration_.warm_start_where =
+      settings.has("warm_start") ? settings.where("warm_start") : settings.where();
   per_iteration_.state_reset =
       settings.get_choice("state_reset", "auto", {"auto", "restart", "replay"});
   per_iteration_.state_reset_where =
@@ -189,7 +192,8 @@ void CalculixSolverWrapper::read_mode(const Settings& settings) {
     // otherwise (choose_auto_mode).
     auto_mode_ = true;
     persistent_ = !settings.has("state_reset") && !settings.has("initial_increment") &&
-                  !settings.has("executable") && !displacement_drive_ && has_coupled_executable();
+                  !settings.has("warm_start") && !settings.has("executable") &&
+                  !displacement_drive_ && has_coupled_executable();
     return;
   }
   persistent_ = mode == "persistent";
@@ -202,6 +206,7 @@ void CalculixSolverWrapper::read_mode(const Settings& settings) {
   };
   refuse("state_reset", "ccx's state is reset from restart files or by replay");
   refuse("initial_increment", "a cut-back increment is carried between ccx runs");
+  refuse("warm_start", "the previous ccx run's solution is handed to the next one");
   if (displacement_drive_)
     settings.fail("interface_drive",
                   "interface_drive: displacement works with mode: per_iteration only (its "

@@ -17,6 +17,8 @@ struct CcxRunOptions {
   std::filesystem::path log_file;
   int threads = 1;
   double timeout = 600.0;  ///< seconds
+  /// Set for ccx besides its threads' (ccx_thread_environment).
+  std::vector<std::pair<std::string, std::string>> environment{};
 };
 
 struct CcxRunResult {
@@ -47,6 +49,9 @@ struct CcxRestartSupport {
   bool state_variables = false;
   /// The axisymmetry flag: CAX models restart at all. Debian's ccx crashes on them.
   bool axisymmetry = false;
+  /// Not a restart's: a run's Newton iterations may start from a solution another run
+  /// recorded (07-warm-start.patch, COCOPP_CCX_GUESS_IN/OUT).
+  bool warm_start = false;
 };
 
 /// Asks `ccx -v` in `scratch_directory` (its log goes there); none if ccx cannot be run.

@@ -133,7 +133,10 @@ void PerIterationCcx::check_dynamic_elements() const {
 void PerIterationCcx::start(const Interface& /*input*/, Interface& output) {
   ccx_path_ = find_executable(options_.executable, model_.working_directory);
   choose_state_reset();
+  check_warm_start();
   std::filesystem::remove(model_.file(kConvergedRestart));
+  std::filesystem::remove(model_.file(kGuess));
+  std::filesystem::remove(model_.file(kNextGuess));
   if (model_.run.timestep_start > 0) restore(model_.run.timestep_start, output);
 }
 
@@ -164,8 +167,28 @@ void PerIterationCcx::choose_state_reset() {
         axisymmetric->second.type));
 }
 
+// A guess is recorded per increment, by the fraction of the step it ends at: replayed steps
+// would take the guess of the step being solved, and a ccx without the patch would ignore it.
+void PerIterationCcx::check_warm_start() const {
+  if (!options_.warm_start) return;
+  if (state_reset_ == StateReset::kReplay)
+    throw CaseError(fmt::format(
+        "{}: solver '{}': warm_start: true needs state_reset: restart (each ccx run solves one "
+        "time step), but this run replays the committed steps{}: remove warm_start or use the "
+        "ccx that scripts/install-calculix.sh builds",
+        options_.warm_start_where, model_.name,
+        options_.state_reset == "replay" ? "" : " (the ccx cannot restart what the deck needs)"));
+  if (!restart_support(ccx_path_, model_.working_directory).warm_start)
+    throw CaseError(fmt::format(
+        "{}: solver '{}': warm_start: true, but {} does not report cocopp's warm start patch "
+        "(scripts/calculix/07-warm-start.patch): use the ccx that scripts/install-calculix.sh "
+        "builds (the default executable), or remove warm_start",
+        options_.warm_start_where, model_.name, ccx_path_.string()));
+}
+
 void PerIterationCcx::initialize_step(int /*step*/, double /*time*/) {
   carried_increment_.reset();  // a new step tries the deck's initial increment first
+  std::filesystem::remove(model_.file(kGuess));  // the last step's increments are no guess
 }
 
 void PerIterationCcx::solve(const Interface& input, Interface& output) {
@@ -293,6 +316,12 @@ void PerIterationCcx::write_step(std::ofstream& out, const std::string& loads_fi
 void PerIterationCcx::run_ccx() {
   CcxRunOptions options{ccx_path_,       model_.working_directory, kJob,
                         model_.log_file, model_.threads,           model_.timeout};
+  if (options_.warm_start) {
+    std::filesystem::remove(model_.file(kNextGuess));
+    options.environment.emplace_back("COCOPP_CCX_GUESS_OUT", model_.file(kNextGuess).string());
+    if (std::filesystem::exists(model_.file(kGuess)))
+      options.environment.emplace_back("COCOPP_CCX_GUESS_IN", model_.file(kGuess).string());
+  }
   CcxRunResult result;
   try {
     result = calculix::run_ccx(options);
@@ -305,6 +334,9 @@ void PerIterationCcx::run_ccx() {
   using Status = CcxRunResult::Status;
   switch (result.status) {
     case Status::kSuccess:
+      // This run's increments are the next iteration's guess; a failed run keeps the last.
+      if (options_.warm_start && std::filesystem::exists(model_.file(kNextGuess)))
+        std::filesystem::rename(model_.file(kNextGuess), model_.file(kGuess));
       return;
     case Status::kNotConverged:
       // The step starts from the converged restart (or the replayed steps) again at the next

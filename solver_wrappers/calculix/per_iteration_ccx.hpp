@@ -38,6 +38,9 @@ class PerIterationCcx : public CcxMode {
   static constexpr const char* kJob = "cocopp_iteration";  ///< ccx job of each iteration
   static constexpr const char* kLoadsFile = "cocopp_loads.inp";
   static constexpr const char* kConvergedRestart = "cocopp_converged.rout";
+  /// warm_start: the last iteration's converged increments, and the running one's.
+  static constexpr const char* kGuess = "cocopp_guess.bin";
+  static constexpr const char* kNextGuess = "cocopp_guess_next.bin";
 
   enum class StateReset { kRestart, kReplay };
 
@@ -51,6 +54,10 @@ class PerIterationCcx : public CcxMode {
     /// time step's last ccx run is the next coupling iteration's first.
     bool carry_initial_increment = false;
     std::string initial_increment_where;
+    /// warm_start: true: each coupling iteration's Newton iterations start from the previous
+    /// iteration's solution of the same time step (scripts/calculix/07-warm-start.patch).
+    bool warm_start = false;
+    std::string warm_start_where;
     bool allow_reduced_integration = false;
     bool save_results = true;
   };
@@ -80,6 +87,7 @@ class PerIterationCcx : public CcxMode {
   void check_deck() const;
   void check_dynamic_elements() const;
   void choose_state_reset();
+  void check_warm_start() const;
   void write_loads(const Interface& input) const;
   void write_iteration_deck() const;
   void write_step(std::ofstream& out, const std::string& loads_file, bool print) const;

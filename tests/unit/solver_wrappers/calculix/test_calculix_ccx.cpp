@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <sstream>
 #include <vector>
@@ -397,6 +398,81 @@ TEST(CalculixCcx, CarriedInitialIncrementSkipsTheCutBack) {
     test.wrapper().initialize_step(2, 2e-4);
     test.solve(p);
     EXPECT_EQ(last_run(test).static_line, "1e-4, 1e-4");
+  }
+}
+
+#ifdef COCOPP_HAVE_PATCHED_CCX
+// warm_start: the step's next coupling iterations start ccx's Newton iterations from the last
+// one's solution (07-warm-start.patch): the cylinder yielding under NLGEOM in one increment, a
+// second and a third iteration with loads changed by 1e-5 (a coupling near its fixed point).
+// Each needs fewer Newton iterations and ends at the answer that ccx converged far below its
+// default tolerance gives (*CONTROLS, PARAMETERS=FIELD 1e-10, 1e-10), to the .dat file's
+// digits; a cold start stops at its default tolerance about 1e-4 of the displacement away
+// from it (2e-9 m here). The next time step starts cold (the last step's increments are no
+// guess for it).
+TEST(CalculixCcx, WarmStartTakesFewerNewtonIterationsToTheConvergedAnswer) {
+  enum Start { kCold, kWarm, kTight };
+  SectorCylinder plastic;
+  plastic.yield_stress = kYield;
+  const double p = 1.5 * plastic.yield_onset_pressure();
+  const std::vector<double> loads = {p, p * (1 + 1e-5), p * (1 - 1e-5)};
+  std::map<Start, std::vector<RowMatrix>> answers;
+  std::map<Start, std::vector<int>> newton;
+  std::map<Start, int> next_step_newton;
+  for (const Start start : {kCold, kWarm, kTight}) {
+    SCOPED_TRACE(start == kCold ? "cold" : start == kWarm ? "warm" : "tight");
+    SectorCylinder cylinder;
+    cylinder.yield_stress = kYield;
+    cylinder.nlgeom = true;
+    cylinder.increments = "1.0, 1.0";  // one increment, as the wire drawing case's held steps
+    if (start == kTight) cylinder.extra_step_cards = "*CONTROLS, PARAMETERS=FIELD\n1e-10, 1e-10\n";
+    CalculixCase test;
+    test.start(cylinder.deck(), start == kWarm ? "warm_start: true\n" : mode_keys("per_iteration"));
+    for (const double load : loads) {
+      answers[start].push_back(test.solve(load));
+      newton[start].push_back(last_run(test).newton_iterations());
+    }
+    const std::string log = testing::read_text(test.path("wall/wall.log"));
+    EXPECT_EQ(log.find("starts from the previous coupling iteration") != std::string::npos,
+              start == kWarm);
+    test.next_step();
+    test.solve(p);
+    next_step_newton[start] = last_run(test).newton_iterations();
+  }
+  EXPECT_EQ(next_step_newton[kWarm], next_step_newton[kCold]) << "a new step starts cold";
+  EXPECT_EQ(newton[kWarm][0], newton[kCold][0]);  // the first iteration has no guess
+  for (std::size_t i = 0; i < loads.size(); ++i) {
+    SCOPED_TRACE("iteration " + std::to_string(i + 1));
+    const RowMatrix& converged = answers[kTight][i];
+    const double largest = converged.cwiseAbs().maxCoeff();
+    const double warm_error = (answers[kWarm][i] - converged).cwiseAbs().maxCoeff();
+    const double cold_error = (answers[kCold][i] - converged).cwiseAbs().maxCoeff();
+    std::cout << "iteration " << i + 1 << ": Newton iterations cold " << newton[kCold][i]
+              << ", warm " << newton[kWarm][i] << "; off the converged answer cold "
+              << cold_error / largest << ", warm " << warm_error / largest << " of the largest\n";
+    if (i == 0) continue;
+    EXPECT_LT(newton[kWarm][i], newton[kCold][i]);
+    EXPECT_LE(warm_error, kDatPrecision * largest);
+    EXPECT_LE(warm_error, cold_error);
+  }
+}
+#endif
+
+// warm_start needs a ccx that records and reads guesses, and one ccx run per time step.
+TEST(CalculixCcx, WarmStartRefusesWhatCannotTakeIt) {
+  SectorCylinder cylinder;
+  {
+    CalculixCase test;
+    const std::string message = error_message<CaseError>(
+        [&] { test.start(cylinder.deck(), "warm_start: true\nstate_reset: replay\n"); });
+    EXPECT_CONTAINS(message, "case.yaml:");
+    EXPECT_CONTAINS(message, "state_reset: restart");
+  }
+  if (std::filesystem::exists("/usr/bin/ccx")) {
+    CalculixCase test;
+    const std::string message = error_message<CaseError>(
+        [&] { test.start(cylinder.deck(), "warm_start: true\nexecutable: /usr/bin/ccx\n"); });
+    EXPECT_CONTAINS(message, "07-warm-start.patch");
   }
 }
 
