@@ -563,6 +563,10 @@ def calculix_wrapper(p, prefix):
                "initial_increment": case.commented(
                    "previous_iteration", "where ccx cut a step back, the step's next\n"
                    "iterations start at the increment that converged")}
+    if p["calculix"].get("warm_start", False):
+        wrapper["warm_start"] = case.commented(
+            True, "the step's next iterations start ccx's Newton iterations\n"
+            "from the last one's solution")
     if displacement_driven(p):
         wrapper["input_variables"] = case.commented(
             ["force"], "the film's force on each face (a total): the wire\n"

@@ -7,7 +7,7 @@ iterations").
         examples/wire_drawing/results/from65 --steps 72
     build/bin/cocopp run examples/wire_drawing/results/from65/case.yaml --restart
 
---wire KEY=VALUE adds a key to the calculix wrapper's settings (repeatable), --omega sets the
+--wire KEY=VALUE sets a key of the calculix wrapper's settings (repeatable), --omega sets the
 coupled solver's first relaxation, --predictor its predictor (linear, quadratic, cubic), and --compliance writes the wire's surface compliance
 (surface_compliance.py) and uses it (surface_compliance: surface_compliance.txt): the drive
 variants of docs/wire-drawing.md, "Fewer coupling iterations".
@@ -92,9 +92,12 @@ def main():
         name, _, value = key.partition("=")
         if not value:
             sys.exit(f"rewind.py: --wire {key}: give KEY=VALUE")
-        # After the wrapper's surface_stiffness, at its indentation.
-        case, found = re.subn(r"(\n( *)surface_stiffness:[^\n]*)", rf"\1\n\2{name}: {value}", case,
-                              count=1)
+        # A key the wrapper has gets the new value (its comment dropped); a new one goes after
+        # the wrapper's surface_stiffness, at its indentation.
+        case, found = re.subn(rf"(\n( *){re.escape(name)}:)[^\n]*", rf"\1 {value}", case, count=1)
+        if not found:
+            case, found = re.subn(r"(\n( *)surface_stiffness:[^\n]*)", rf"\1\n\2{name}: {value}",
+                                  case, count=1)
         if not found:
             sys.exit("rewind.py: the case has no surface_stiffness (is its wire driven?)")
     (args.target / "case.yaml").write_text(case)
