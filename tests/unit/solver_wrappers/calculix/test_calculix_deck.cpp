@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 
 #include <cmath>
+#include <cstdlib>
 
 #include "solver_wrappers/calculix/ccx_run.hpp"
 #include "solver_wrappers/calculix/dat_file.hpp"
@@ -407,15 +408,22 @@ TEST_F(CalculixWithoutCcx, MissingResultsAreReported) {
 // oversubscribe the machine (docs/solver-wrappers-calculix.md: a third of the wire drawing
 // case's time went to waking and yielding their threads).
 TEST_F(CalculixWithoutCcx, CcxGetsItsThreadsAndItsLibrariesOne) {
+  // Only the variables the wrapper sets: a machine may set others of OpenBLAS's (its core type).
   test_.create(cylinder_.deck(),
-               fake_ccx("env | grep -E '^(OMP_|OPENBLAS_|CCX_NPROC_)' | sort > thread_env.txt") +
+               fake_ccx("env | grep -E '^(OMP_NUM_THREADS|OMP_THREAD_LIMIT|OPENBLAS_NUM_THREADS|"
+                        "CCX_NPROC_[A-Z_]+|GLIBC_TUNABLES)=' | sort > thread_env.txt") +
                    "threads: 2\n");
   test_.wrapper().initialize();
   test_.wrapper().initialize_step(1, 1.0);
   EXPECT_THROW(test_.solve(1e6), SolverError);  // the fake ccx writes no results
+  // The huge-page tunable is added to the coupler's own tunables, if it has any.
+  const char* tunables = std::getenv("GLIBC_TUNABLES");
+  const std::string huge_pages = std::string(tunables && *tunables ? tunables : "") +
+                                 (tunables && *tunables ? ":" : "") + "glibc.malloc.hugetlb=1";
   EXPECT_EQ(read_text(test_.path("wall/thread_env.txt")),
             "CCX_NPROC_EQUATION_SOLVER=2\nCCX_NPROC_RESULTS=2\nCCX_NPROC_STIFFNESS=2\n"
-            "OMP_NUM_THREADS=2\nOMP_THREAD_LIMIT=1\nOPENBLAS_NUM_THREADS=1\n");
+            "GLIBC_TUNABLES=" +
+                huge_pages + "\nOMP_NUM_THREADS=2\nOMP_THREAD_LIMIT=1\nOPENBLAS_NUM_THREADS=1\n");
 }
 
 TEST_F(CalculixWithoutCcx, CaseKeysAreChecked) {
