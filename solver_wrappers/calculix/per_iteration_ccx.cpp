@@ -149,7 +149,7 @@ void PerIterationCcx::choose_state_reset() {
   const bool history = has_material_history(deck);
   const auto* axisymmetric = first_element(deck, is_axisymmetric);
   if (state_reset_ == StateReset::kReplay || (!history && axisymmetric == nullptr)) return;
-  const auto support = restart_support(ccx_path_, model_.working_directory);
+  const CcxRestartSupport& support = ccx_support();
   const bool crashes = axisymmetric != nullptr && !support.axisymmetry;
   const bool forgets = history && !support.state_variables;
   if (options_.state_reset == "auto") {
@@ -167,6 +167,12 @@ void PerIterationCcx::choose_state_reset() {
         axisymmetric->second.type));
 }
 
+// `ccx -v` is a process start: asked once, by whichever check needs it first.
+const CcxRestartSupport& PerIterationCcx::ccx_support() const {
+  if (!ccx_support_) ccx_support_ = restart_support(ccx_path_, model_.working_directory);
+  return *ccx_support_;
+}
+
 // A guess is recorded per increment, by the fraction of the step it ends at: replayed steps
 // would take the guess of the step being solved, and a ccx without the patch would ignore it.
 void PerIterationCcx::check_warm_start() const {
@@ -178,7 +184,7 @@ void PerIterationCcx::check_warm_start() const {
         "ccx that scripts/install-calculix.sh builds",
         options_.warm_start_where, model_.name,
         options_.state_reset == "replay" ? "" : " (the ccx cannot restart what the deck needs)"));
-  if (!restart_support(ccx_path_, model_.working_directory).warm_start)
+  if (!ccx_support().warm_start)
     throw CaseError(fmt::format(
         "{}: solver '{}': warm_start: true, but {} does not report cocopp's warm start patch "
         "(scripts/calculix/07-warm-start.patch): use the ccx that scripts/install-calculix.sh "

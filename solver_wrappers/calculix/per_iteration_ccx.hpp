@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "solver_wrappers/calculix/ccx_mode.hpp"
+#include "solver_wrappers/calculix/ccx_run.hpp"
 #include "solver_wrappers/calculix/displacement_drive.hpp"
 
 namespace cocopp::calculix {
@@ -88,6 +89,7 @@ class PerIterationCcx : public CcxMode {
   void check_dynamic_elements() const;
   void choose_state_reset();
   void check_warm_start() const;
+  const CcxRestartSupport& ccx_support() const;
   void write_loads(const Interface& input) const;
   void write_iteration_deck() const;
   void write_step(std::ofstream& out, const std::string& loads_file, bool print) const;
@@ -103,6 +105,7 @@ class PerIterationCcx : public CcxMode {
   Drive drive_;
   std::filesystem::path ccx_path_;
   StateReset state_reset_ = StateReset::kRestart;
+  mutable std::optional<CcxRestartSupport> ccx_support_;  ///< what `ccx -v` reports
   bool has_converged_restart_ = false;        ///< restart: a committed step to restart from
   std::vector<std::string> committed_loads_;  ///< replay: each committed step's loads file
   std::optional<double> carried_increment_;
