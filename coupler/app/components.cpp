@@ -17,6 +17,7 @@ namespace cocopp {
 std::vector<ComponentKind> component_kinds() {
   return {
       {"coupled solvers", "coupled_solver.type", CoupledSolverRegistry::instance().names()},
+      {"coupling schemes", "coupled_solver.scheme", CouplingSchemeRegistry::instance().names()},
       {"models", "coupled_solver.model.type", ModelRegistry::instance().names()},
       {"predictors", "coupled_solver.predictor.type", PredictorRegistry::instance().names()},
       {"convergence criteria", "coupled_solver.convergence_criterion.type",

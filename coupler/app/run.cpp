@@ -255,7 +255,7 @@ class Run {
     const auto& solver_times = coupled.solver_time_total();
     end.solver_times = {solver_times[0], solver_times[1]};
     const double own_solvers = coupled.own_solvers_time_total();
-    end.coupler_time = end.wall_time - solver_times[0] - solver_times[1] - own_solvers;
+    end.coupler_time = end.wall_time - coupled.solvers_wall_time_total() - own_solvers;
     end.unfinished_step = coupled.unfinished_step();
     end.unfinished_time = end.unfinished_step * case_.run.delta_t;
     end.unfinished_residuals = coupled.unfinished_residuals();

@@ -34,6 +34,11 @@ class Combined : public ConvergenceCriterion {
       if (c->tolerance_met()) return true;
     return false;
   }
+  bool limit_reached() const override {
+    for (const auto& c : criteria_)
+      if (c->limit_reached()) return true;
+    return false;
+  }
   std::string progress() const override {
     std::vector<std::string> parts;
     for (const auto& c : criteria_)

@@ -36,6 +36,8 @@ class ConvergenceCriterion {
   virtual bool is_satisfied() const = 0;
   /// Stopped because the tolerance was met (not only because of an iteration limit).
   virtual bool tolerance_met() const { return is_satisfied(); }
+  /// An iteration limit in it is reached (the step ends whatever else is measured).
+  virtual bool limit_reached() const { return false; }
   /// Where the last residual stands as this criterion measures it, for the progress line
   /// (e.g. "relative 3.1e-07"); "" when the 2-norm the line shows already says it.
   virtual std::string progress() const { return ""; }

@@ -13,6 +13,7 @@ class IterationLimit : public ConvergenceCriterion {
   void update(const Eigen::VectorXd&) override { ++iterations_; }
   bool is_satisfied() const override { return iterations_ >= maximum_; }
   bool tolerance_met() const override { return false; }
+  bool limit_reached() const override { return is_satisfied(); }
   std::string describe() const override { return fmt::format("iteration_limit {}", maximum_); }
 
  private:

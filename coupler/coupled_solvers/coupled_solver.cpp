@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/case/suggest.hpp"
+
 namespace cocopp {
 
 namespace {
@@ -33,12 +35,44 @@ double seconds_since(Clock::time_point start) {
 }
 }  // namespace
 
+namespace {
+/// The `scheme` key: one of the registered coupling schemes.
+std::string read_scheme(const Settings& settings) {
+  const auto scheme = settings.get<std::string>("scheme", "serial");
+  const auto names = CouplingSchemeRegistry::instance().names();
+  if (std::find(names.begin(), names.end(), scheme) == names.end())
+    settings.fail("scheme", "unknown coupling scheme '" + scheme + "'" +
+                                did_you_mean(scheme, names) + " (available: " + join(names) + ")");
+  return scheme;
+}
+
+std::unique_ptr<ConvergenceCriterion> read_load_criterion(const Settings& settings,
+                                                          const std::string& scheme) {
+  if (!settings.has("load_criterion")) {
+    if (scheme == "parallel")
+      settings.fail("scheme",
+                    "parallel needs a load_criterion too: side by side the displacement residual "
+                    "S(y) - x can vanish while y is not yet F(x) (add e.g. load_criterion: {type: "
+                    "relative_norm, tolerance: 1.0e-6, reference: largest})");
+    return nullptr;
+  }
+  if (scheme != "parallel")
+    settings.fail("load_criterion",
+                  "measures the load residual y~ - y, which only the parallel scheme iterates on "
+                  "(set scheme: parallel, or remove load_criterion)");
+  return ConvergenceCriterionRegistry::instance().create(settings.child("load_criterion"));
+}
+}  // namespace
+
 CoupledSolver::CoupledSolver(const Settings& settings)
     : type_(settings.required<std::string>("type")),
+      scheme_type_(read_scheme(settings)),
+      scheme_settings_(settings),
       predictor_type_(settings.child("predictor").required<std::string>("type")),
       predictor_(PredictorRegistry::instance().create(settings.child("predictor"))),
       criterion_(
           ConvergenceCriterionRegistry::instance().create(settings.child("convergence_criterion"))),
+      load_criterion_(read_load_criterion(settings, scheme_type_)),
       divergence_factor_(
           settings.child_or_empty("divergence").get_in_range("factor", 1e6, Range::at_least(1.0))),
       growth_iterations_(
@@ -50,12 +84,14 @@ CoupledSolver::CoupledSolver(const Settings& settings)
 CoupledSolver::~CoupledSolver() = default;
 
 void CoupledSolver::initialize(SolverWrapper& first, SolverWrapper& second) {
-  scheme_ = std::make_unique<SerialScheme>(first, second, backtracking_, divergence_advice());
+  scheme_ = CouplingSchemeRegistry::instance().create_named(
+      scheme_type_, scheme_settings_,
+      CouplingScheme::Parts{&first, &second, backtracking_, divergence_advice()});
   scheme_->set_loads_update([this](const Eigen::VectorXd& x, const Eigen::VectorXd& yt) {
     return second_solver_input(x, yt);
   });
   scheme_->start();
-  predictor_->initialize(scheme_->x().data());
+  predictor_->initialize(scheme_->unknown());
   criterion_->attach_solvers(scheme_->solvers());
   on_initialized();
 }
@@ -68,6 +104,10 @@ const Interface& CoupledSolver::x() const {
 const Interface& CoupledSolver::y() const {
   static const Interface none;
   return scheme_ ? scheme_->y() : none;
+}
+
+std::vector<const Interface*> CoupledSolver::unknown_layouts() const {
+  return scheme_ ? scheme_->unknown_layouts() : std::vector<const Interface*>{};
 }
 
 StepRecord CoupledSolver::solve_step(int step, double time) {
@@ -89,55 +129,69 @@ StepRecord CoupledSolver::iterate_step(int step, double time) {
   unfinished_residuals_.clear();
   scheme_->begin_step(step, time);
 
-  // The previous step's converged input: what the solvers last accepted.
-  Eigen::VectorXd accepted = scheme_->x().data();
+  // The previous step's converged unknown: what the solvers last accepted.
+  Eigen::VectorXd accepted = scheme_->unknown();
   criterion_->initialize_step();
+  if (load_criterion_) load_criterion_->initialize_step();
   on_step_start();
-  Eigen::VectorXd x = first_input(predictor_->predict());
+  Eigen::VectorXd u = first_input(predictor_->predict());
   bool tolerance_met = false;
   std::vector<std::string> notes;
   for (int iteration = 1;; ++iteration) {
-    const Eigen::VectorXd xt = scheme_->evaluate_stepping_back(x, accepted, iteration, notes);
-    accepted = x;
-    const Eigen::VectorXd r = xt - x;
-    record.residual_norms.push_back(r.norm());
+    const Eigen::VectorXd ut = scheme_->evaluate_stepping_back(u, accepted, iteration, notes);
+    accepted = u;
+    const Eigen::VectorXd r = ut - u;
+    // The displacement residual x~ - x is what every scheme reports and checks.
+    const Eigen::VectorXd rx = scheme_->displacement_part(r);
+    record.residual_norms.push_back(rx.norm());
     unfinished_residuals_.push_back(record.residual_norms.back());
     record.iterations = iteration;
-    if (iteration == 1) largest_first_residual_ = std::max(largest_first_residual_, r.norm());
+    if (iteration == 1) largest_first_residual_ = std::max(largest_first_residual_, rx.norm());
     check_divergence(record.residual_norms, step, time, notes);
     if (!iterates()) {
-      x = xt;  // explicit coupling accepts the structure's answer
+      u = ut;  // explicit coupling accepts the solvers' answers
       tolerance_met = true;
       break;
     }
-    criterion_->update(convergence_residual(r));
+    const bool stop = update_criteria(r, tolerance_met);
     // The progress text is formatted for an observer, else once for the step's last iteration:
     // formatting it every iteration cost 7 % of the coupler's time on the tube.
     if (iteration_observer_)
       iteration_observer_({step, iteration, record.residual_norms.back(), criterion_->progress(),
                            seconds_since(step_start_), &scheme_->x().data(), &scheme_->y().data(),
-                           &r});
-    if (criterion_->is_satisfied()) {
-      on_converged(x, xt, r);
-      tolerance_met = criterion_->tolerance_met();
+                           &rx});
+    if (stop) {
+      on_converged(u, ut, r);
       break;
     }
-    x = next_input(x, xt, r);
+    u = next_input(u, ut, r);
   }
   if (iterates()) record.criterion_progress = criterion_->progress();
   for (auto& note : take_notes()) notes.push_back(std::move(note));
   record.warnings = count_repeats(notes);
   record.converged = tolerance_met;
-  scheme_->set_x(x);
+  scheme_->set_unknown(u);
   return record;
 }
 
-void CoupledSolver::synchronize(const Eigen::VectorXd& x) {
-  scheme_->evaluate(x, 0);
+bool CoupledSolver::update_criteria(const Eigen::VectorXd& r, bool& tolerance_met) {
+  criterion_->update(convergence_residual(scheme_->displacement_part(r)));
+  if (!load_criterion_) {
+    tolerance_met = criterion_->tolerance_met();
+    return criterion_->is_satisfied();
+  }
+  load_criterion_->update(scheme_->loads_part(r));
+  tolerance_met = criterion_->tolerance_met() && load_criterion_->tolerance_met();
+  // An iteration limit in either criterion ends the step; a tolerance needs both.
+  return tolerance_met || criterion_->limit_reached() || load_criterion_->limit_reached();
+}
+
+void CoupledSolver::synchronize(const Eigen::VectorXd& u) {
+  scheme_->evaluate(u, 0);
 }
 
 void CoupledSolver::commit_step(StepRecord& record) {
-  predictor_->update(scheme_->x().data());
+  predictor_->update(scheme_->unknown());
   on_step_end();
   scheme_->commit_step();
 
@@ -147,7 +201,7 @@ void CoupledSolver::commit_step(StepRecord& record) {
   const auto& solver_times = scheme_->step_times();
   record.solver_times = {solver_times[0], solver_times[1]};
   record.coupler_time =
-      record.wall_time - solver_times[0] - solver_times[1] - own_solvers_time_step_;
+      record.wall_time - scheme_->step_solvers_wall_time() - own_solvers_time_step_;
   record.surrogate_iterations = own_iterations_;
   record.x = scheme_->x().data();
   record.y = scheme_->y().data();
@@ -160,16 +214,19 @@ void CoupledSolver::save_solver_restarts(int step) {
 
 void CoupledSolver::check_divergence(const std::vector<double>& norms, int step, double time,
                                      std::vector<std::string>& notes) const {
-  const double first = norms.front();
+  // Side by side, the first displacement residual can be near zero while the loads' is not
+  // (relative_norm's `reference`): growth is measured from the larger of the first two.
+  const int reference = side_by_side() && norms.size() > 1 && norms[1] > norms[0] ? 1 : 0;
+  const double first = norms[std::size_t(reference)];
   const double last = norms.back();
   const int iteration = static_cast<int>(norms.size());
   if (!std::isfinite(last) || (first > 0.0 && last > divergence_factor_ * first))
     throw DivergenceError(
         std::isfinite(last) ? DivergenceKind::kGrowth : DivergenceKind::kNonFinite, step, iteration,
         fmt::format("the coupling diverged in time step {} (t = {:g} s): the residual norm grew "
-                    "from {:.3e} in iteration 1 to {:.3e} in iteration {} (more than "
+                    "from {:.3e} in iteration {} to {:.3e} in iteration {} (more than "
                     "coupled_solver.divergence.factor = {:g} times). {}",
-                    step, time, first, last, norms.size(), divergence_factor_,
+                    step, time, first, reference + 1, last, norms.size(), divergence_factor_,
                     divergence_advice()));
   // A slow but steady growth never reaches the factor before the iteration limit: catch it by
   // its persistence (converging methods grow at most a few iterations in a row).
@@ -201,7 +258,7 @@ void CoupledSolver::check_divergence(const std::vector<double>& norms, int step,
 
 void CoupledSolver::save_state(State& state) const {
   const auto& history = predictor_->history();
-  Eigen::MatrixXd columns(x().size(), Eigen::Index(history.size()));
+  Eigen::MatrixXd columns(scheme_->unknown().size(), Eigen::Index(history.size()));
   for (std::size_t i = 0; i < history.size(); ++i) columns.col(Eigen::Index(i)) = history[i];
   state.group("predictor").set("history", std::move(columns));
   state.set("largest_first_residual", largest_first_residual_);
@@ -210,15 +267,17 @@ void CoupledSolver::save_state(State& state) const {
 
 void CoupledSolver::load_state(const State& state, bool own) {
   const Eigen::MatrixXd& columns = state.group("predictor").matrix("history");
-  if (columns.rows() != x().size() || columns.cols() == 0)
+  const Eigen::Index size = scheme_->unknown().size();
+  if (columns.rows() != size || columns.cols() == 0)
     throw std::runtime_error(fmt::format(
-        "the saved coupled-solver state holds an interface of {} values, this run's has {} "
-        "([{}])",
-        columns.rows(), x().size(), x().describe()));
+        "the saved coupled-solver state holds an unknown of {} values, this run's has {} "
+        "([{}]{}; a run saved by one coupling scheme continues with the same scheme)",
+        columns.rows(), size, x().describe(),
+        side_by_side() ? " and [" + y().describe() + "], scheme parallel" : ""));
   std::deque<Eigen::VectorXd> history;
   for (Eigen::Index i = 0; i < columns.cols(); ++i) history.push_back(columns.col(i));
   predictor_->restore(std::move(history));
-  scheme_->set_x(columns.col(0));
+  scheme_->set_unknown(columns.col(0));
   // (State files written before it was saved lack it: the growth check is then strict.)
   if (state.has("largest_first_residual"))
     largest_first_residual_ = state.scalar("largest_first_residual");
@@ -238,9 +297,12 @@ std::string CoupledSolver::describe() const {
           ? ""
           : fmt::format(", a rejected input retried {} times, the step shortened by {:g}",
                         backtracking_.retries, backtracking_.factor);
-  return fmt::format("{}{}, predictor {}, stop at {}{}", type_,
-                     settings.empty() ? "" : " (" + settings + ")", predictor_type_,
-                     criterion_->describe(), backtracking);
+  const std::string scheme = side_by_side() ? ", the solvers side by side (scheme parallel)" : "";
+  const std::string loads =
+      load_criterion_ ? " and, of the loads, " + load_criterion_->describe() : "";
+  return fmt::format("{}{}{}, predictor {}, stop at {}{}{}", type_,
+                     settings.empty() ? "" : " (" + settings + ")", scheme, predictor_type_,
+                     criterion_->describe(), loads, backtracking);
 }
 
 }  // namespace cocopp

@@ -3,10 +3,12 @@
 //
 // Notation (as in CoCoNuT): the first solver F maps the interface displacement x to loads y,
 // the second S maps y back to a displacement x~; the residual is r = x~ - x. The solvers are
-// run by a SerialScheme (coupler/schemes: starting, timing, stepping back, the overlapped step
-// requests); the base class owns the iteration loop, the predictor, the convergence criterion
-// and the divergence checks; each coupled solver only says how the next x follows from x, x~
-// and r (`next_input`) and what it keeps between steps (its state).
+// run by a CouplingScheme chosen with `scheme` (coupler/schemes: serial, F then S, iterates on
+// x; parallel, F and S side by side, on x and y stacked), which also starts, times and steps
+// back; the base class owns the iteration loop, the predictor, the convergence criterion and
+// the divergence checks; each coupled solver only says how the next unknown follows from the
+// unknown u, its image u~ and r = u~ - u (`next_input`: x, x~ and r in the serial scheme) and
+// what it keeps between steps (its state).
 #include <Eigen/Core>
 #include <array>
 #include <chrono>
@@ -19,7 +21,7 @@
 #include "coupler/results/run_outcome.hpp"
 #include "coupler/results/state.hpp"
 #include "coupler/results/step_record.hpp"
-#include "coupler/schemes/serial_scheme.hpp"
+#include "coupler/schemes/coupling_scheme.hpp"
 #include "coupler/schemes/stopwatch.hpp"
 #include "solver_wrappers/solver_wrapper.hpp"
 
@@ -33,7 +35,7 @@ class CoupledSolver {
   explicit CoupledSolver(const Settings& settings);
   virtual ~CoupledSolver();
 
-  /// Start both solvers (a SerialScheme of them) and check that their interfaces fit together.
+  /// Start both solvers (the `scheme` of them) and check that their interfaces fit together.
   void initialize(SolverWrapper& first, SolverWrapper& second);
   /// Create what the coupled solver itself runs besides the case's two solvers (iqnism's
   /// surrogate solvers), from its settings; called once, while the case is read.
@@ -68,6 +70,11 @@ class CoupledSolver {
   /// the step.
   const Interface& x() const;
   const Interface& y() const;
+  /// The interfaces the iterated unknown is made of ({x} serial, {x, y} parallel): what the
+  /// vectors given to next_input() are laid out as.
+  std::vector<const Interface*> unknown_layouts() const;
+  /// Whether the solvers run side by side (`scheme: parallel`): known from construction on.
+  bool side_by_side() const { return scheme_type_ == "parallel"; }
   /// "iqni (omega 0.05, model ls q 10), predictor linear, until (...)": for the run header.
   std::string describe() const;
   /// When a step's iterations stop.
@@ -82,6 +89,9 @@ class CoupledSolver {
   void load_state(const State& state, bool own = true);
   /// Wall time spent in each solver since initialize(), in seconds.
   const std::array<double, 2>& solver_time_total() const { return scheme_->total_times(); }
+  /// Wall time during which a solver ran since initialize(): the sum of solver_time_total()
+  /// less what they ran side by side.
+  double solvers_wall_time_total() const { return scheme_->total_solvers_wall_time(); }
   /// Wall time spent in the coupled solver's own solvers (iqnism's surrogate, its coupling
   /// included) since initialize(), in seconds: not the coupler's time.
   double own_solvers_time_total() const { return own_solvers_time_total_; }
@@ -125,6 +135,15 @@ class CoupledSolver {
   /// What to suggest when this method diverges.
   virtual std::string divergence_advice() const;
 
+  /// For a type whose iteration is serial by construction: `scheme: parallel` is a case error
+  /// that says `why`.
+  void require_serial_scheme(const Settings& settings, const std::string& why) const {
+    if (side_by_side())
+      settings.fail("scheme", "coupled solver '" + type_ +
+                                  "' cannot run the solvers side by side: " + why +
+                                  " (use iqni, aitken or relaxation with scheme: parallel)");
+  }
+
   /// The scope of a Stopwatch counts as time of the coupled solver's own solvers (its
   /// surrogate, say), not the coupler's.
   struct OwnSolversStopwatch;
@@ -142,13 +161,20 @@ class CoupledSolver {
   void check_divergence(const std::vector<double>& norms, int step, double time,
                         std::vector<std::string>& notes) const;
 
+  /// Whether the iterations stop after one with residual r (laid out as the unknown).
+  bool update_criteria(const Eigen::VectorXd& r, bool& tolerance_met);
+
+  std::string scheme_type_;
+  Settings scheme_settings_;  ///< the coupled solver's: for the scheme's errors
   std::string predictor_type_;
   std::unique_ptr<Predictor> predictor_;
   std::unique_ptr<ConvergenceCriterion> criterion_;
+  /// Parallel schemes: the criterion of the load residual y~ - y (`load_criterion`), if set.
+  std::unique_ptr<ConvergenceCriterion> load_criterion_;
   double divergence_factor_;
   int growth_iterations_;  ///< 0: off
-  SerialScheme::Backtracking backtracking_;
-  std::unique_ptr<SerialScheme> scheme_;  ///< the case's two solvers, after initialize()
+  CouplingScheme::Backtracking backtracking_;
+  std::unique_ptr<CouplingScheme> scheme_;  ///< the case's two solvers, after initialize()
   std::chrono::steady_clock::time_point step_start_;
   std::function<void(const IterationReport&)> iteration_observer_;
   int unfinished_step_ = 0;

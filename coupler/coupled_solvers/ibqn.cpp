@@ -69,7 +69,9 @@ class Ibqn : public CoupledSolver {
                           "coupled"),
         f_(s, "model_f"),
         s_(s, "model_s"),
-        scaling_(s) {}
+        scaling_(s) {
+    require_serial_scheme(s, "its block update gives S loads made from F's answer to this x");
+  }
 
  protected:
   void on_initialized() override { scaling_.bind({&x(), &y()}); }

@@ -1,6 +1,8 @@
 // iqni: interface quasi-Newton with an approximation of the inverse Jacobian (IQN-I), the
 // Jacobian model chosen by `model` (ls = IQN-ILS). x^(k+1) = x~^k + W c, where the model fits
-// V c ~ -r^k; relaxation with omega until the model has information.
+// V c ~ -r^k; relaxation with omega until the model has information. With `scheme: parallel`
+// x is the stacked unknown (x, y) and the fit weighs each variable (`scaling`, automatic
+// unless set): unweighted, a pressure's residual in Pa would drown the displacement's in m.
 //
 // `mixing` (beta, model ls only) is Anderson acceleration's mixing parameter (Walker and Ni,
 // 2011): x^(k+1) = x~^k + W c - (1 - beta) (r^k + V c). IQN-ILS is beta = 1: the part of the
@@ -24,7 +26,12 @@ class Iqni : public CoupledSolver {
         mixing_(s.get_in_range("mixing", 1.0, {0.0, 1.0, true})),
         model_type_(s.child("model").required<std::string>("type")),
         model_(ModelRegistry::instance().create(s.child("model"))),
-        scaling_(s) {
+        scaling_(s, side_by_side()) {
+    if (scaling_.changing() && !model_->rescalable())
+      s.fail("scaling",
+             "residual_sum changes the weights every iteration, which model '" + model_type_ +
+                 "' cannot follow: give fixed weights (scaling: {displacement: ..., pressure: "
+                 "...}) or 'automatic', or use model 'ls'");
     if (mixing_ != 1.0 && !model_->fits_residuals())
       s.fail("mixing", "is defined for model 'ls' only (model '" + model_type_ +
                            "' approximates a Jacobian, not a least-squares fit of residuals)");
@@ -35,18 +42,24 @@ class Iqni : public CoupledSolver {
   Model* residual_model() override { return scaling_.enabled() ? nullptr : model_.get(); }
 
  protected:
-  void on_initialized() override { scaling_.bind({&x()}); }
-  void on_step_start() override { model_->initialize_step(); }
-  void on_step_end() override { model_->finalize_step(); }
+  void on_initialized() override { scaling_.bind(unknown_layouts()); }
+  void on_step_start() override {
+    model_->initialize_step();
+    if (scaling_.changing()) rescale_model();
+  }
+  void on_step_end() override {
+    model_->finalize_step();
+    first_step_ = false;
+  }
 
   void on_converged(const Eigen::VectorXd&, const Eigen::VectorXd& xt,
                     const Eigen::VectorXd& r) override {
-    model_->add(scaling_.apply(0, r), xt);
+    model_->add(weigh(r), xt);
   }
 
   Eigen::VectorXd next_input(const Eigen::VectorXd& x, const Eigen::VectorXd& xt,
                              const Eigen::VectorXd& r) override {
-    const Eigen::VectorXd weighted_r = scaling_.apply(0, r);
+    const Eigen::VectorXd weighted_r = weigh(r);
     model_->add(weighted_r, xt);
     if (model_->is_ready()) {
       const Eigen::VectorXd dxt = model_->predict(-weighted_r);
@@ -54,11 +67,26 @@ class Iqni : public CoupledSolver {
       if (model_->columns() > 0) {
         if (mixing_ == 1.0) return xt + dxt;
         const Eigen::VectorXd unexplained =
-            scaling_.remove(0, weighted_r + model_->fitted(-weighted_r));
+            scaling_.remove_all(weighted_r + model_->fitted(-weighted_r));
         return xt + dxt - (1.0 - mixing_) * unexplained;
       }
     }
     return x + omega_ * r;
+  }
+
+  /// r in the model's weights. residual_sum takes r into its sums; its weights follow at the
+  /// next step's start, and in the first step (no weights yet) at once.
+  Eigen::VectorXd weigh(const Eigen::VectorXd& r) {
+    if (scaling_.changing()) {
+      scaling_.accumulate(r);
+      if (first_step_) rescale_model();
+    }
+    return scaling_.apply_all(r);
+  }
+
+  void rescale_model() {
+    const Eigen::VectorXd factors = scaling_.refresh();
+    if (factors.size() > 0) model_->rescale(factors);
   }
 
   std::vector<std::string> take_notes() override {
@@ -88,6 +116,7 @@ class Iqni : public CoupledSolver {
   std::string model_type_;
   std::unique_ptr<Model> model_;
   VariableScaling scaling_;
+  bool first_step_ = true;  ///< of this run (also a restarted one)
 };
 
 }  // namespace

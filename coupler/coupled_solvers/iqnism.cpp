@@ -50,6 +50,7 @@ class Iqnism : public CoupledSolver {
                             "surrogate acts on the part of the residual that the "
                             "model's columns do not explain, got '" +
                                 model_type_ + "'");
+    require_serial_scheme(s, "its surrogate models the serial fixed point x = S(F(x))");
   }
 
   void create_own_solvers(const RunSettings& run) override {

@@ -9,11 +9,15 @@
 
 namespace cocopp {
 
-VariableScaling::VariableScaling(const Settings& s) : settings_(s) {
-  if (!s.has("scaling")) return;
+VariableScaling::VariableScaling(const Settings& s, bool residual_sum_by_default) : settings_(s) {
+  if (!s.has("scaling")) {
+    residual_sum_ = residual_sum_by_default;
+    return;
+  }
   if (s.node()["scaling"].IsScalar()) {
-    s.required_choice("scaling", {"automatic"});
-    automatic_ = true;
+    const auto mode = s.required_choice("scaling", {"automatic", "residual_sum", "none"});
+    automatic_ = mode == "automatic";
+    residual_sum_ = mode == "residual_sum";
     return;
   }
   const Settings factors = s.child("scaling");
@@ -81,18 +85,97 @@ Eigen::VectorXd VariableScaling::remove(std::size_t index, const Eigen::VectorXd
   return weighted.cwiseQuotient(layouts_.at(index).weights);
 }
 
+void VariableScaling::accumulate(const Eigen::VectorXd& r) {
+  std::map<std::string, double> squares;
+  Eigen::Index offset = 0;
+  for (const Layout& layout : layouts_) {
+    for (const auto& block : layout.blocks)
+      squares[block.variable] +=
+          r.segment(offset + block.offset, block.points * block.components).squaredNorm();
+    offset += layout.weights.size();
+  }
+  const double total = r.norm();
+  if (!(total > 0.0) || !std::isfinite(total)) return;
+  for (const auto& [variable, square] : squares) sums_[variable] += std::sqrt(square) / total;
+}
+
+Eigen::VectorXd VariableScaling::refresh() {
+  std::vector<Eigen::VectorXd> old;
+  Eigen::Index size = 0;
+  for (const Layout& layout : layouts_) {
+    old.push_back(layout.weights);
+    size += layout.weights.size();
+  }
+  // A variable whose sum is still zero keeps its weight (1 until it has a residual). Weights
+  // within 10 % of those in use stay: re-expressing the models' columns costs a QR
+  // factorization, and any fixed weights are as consistent as new ones.
+  std::map<std::string, double> candidate = weights_;
+  bool changed = false;
+  for (const auto& [variable, sum] : sums_) {
+    if (!(sum > 0.0)) continue;
+    const double weight = 1.0 / sum;
+    const auto in_use = weights_.find(variable);
+    if (in_use == weights_.end() || std::abs(weight / in_use->second - 1.0) > 0.1) changed = true;
+    candidate[variable] = weight;
+  }
+  if (!changed) return {};
+  weights_ = std::move(candidate);
+  refresh_weights();
+  Eigen::VectorXd factors(size);
+  Eigen::Index offset = 0;
+  for (std::size_t i = 0; i < layouts_.size(); ++i) {
+    const Eigen::Index n = layouts_[i].weights.size();
+    factors.segment(offset, n) = layouts_[i].weights.cwiseQuotient(old[i]);
+    offset += n;
+  }
+  return factors;
+}
+
+Eigen::VectorXd VariableScaling::apply_all(const Eigen::VectorXd& values) {
+  if (!enabled()) return values;
+  Eigen::VectorXd weighted(values.size());
+  Eigen::Index offset = 0;
+  for (std::size_t i = 0; i < layouts_.size(); ++i) {
+    const Eigen::Index size = layouts_[i].weights.size();
+    weighted.segment(offset, size) = apply(i, values.segment(offset, size));
+    offset += size;
+  }
+  return weighted;
+}
+
+Eigen::VectorXd VariableScaling::remove_all(const Eigen::VectorXd& weighted) const {
+  if (!enabled()) return weighted;
+  Eigen::VectorXd values(weighted.size());
+  Eigen::Index offset = 0;
+  for (std::size_t i = 0; i < layouts_.size(); ++i) {
+    const Eigen::Index size = layouts_[i].weights.size();
+    values.segment(offset, size) = remove(i, weighted.segment(offset, size));
+    offset += size;
+  }
+  return values;
+}
+
 void VariableScaling::save_state(State& state) const {
   for (const auto& [variable, weight] : weights_) state.set(variable, weight);
+  if (residual_sum_) {
+    State& sums = state.group("sums");
+    for (const auto& [variable, sum] : sums_) sums.set(variable, sum);
+  }
 }
 
 void VariableScaling::load_state(const State& state) {
   weights_.clear();
   for (const auto& [variable, array] : state.arrays()) weights_[variable] = state.scalar(variable);
+  sums_.clear();
+  if (residual_sum_ && state.has_group("sums"))
+    for (const auto& [variable, array] : state.group("sums").arrays())
+      sums_[variable] = state.group("sums").scalar(variable);
   refresh_weights();
 }
 
 std::string VariableScaling::describe() const {
   if (automatic_) return "automatic";
+  if (residual_sum_) return "residual_sum";
   std::vector<std::string> parts;
   for (const auto& [variable, factor] : fixed_)
     parts.push_back(fmt::format("{} {:g}", variable, factor));

@@ -6,7 +6,19 @@
 // Weighting each variable's values gives every variable a say.
 //
 // Case file (`coupled_solver.scaling`):
-//   absent                      all weights 1 (no scaling)
+//   absent                      all weights 1 (no scaling); `residual_sum` where the coupled
+//                               solver asks for it (the parallel scheme: displacement and
+//                               loads side by side in one unknown)
+//   none                        all weights 1
+//   residual_sum                weight 1 / s_v, with s_v the sum over every coupling iteration
+//                               so far of ||r_v|| / ||r|| (r_v the variable's part of the
+//                               residual), updated every iteration (preCICE's residual-sum
+//                               preconditioner, summed over the run instead of a step: a
+//                               step's first displacement residual can be near zero side by
+//                               side). The weights change at the start of a step (every
+//                               iteration in the run's first step), so that a step's secant
+//                               columns share them; the models re-express the columns they
+//                               keep in new weights (Model::rescale; `ls` can).
 //   {pressure: 1e-5, ...}       fixed weight per variable (others 1)
 //   automatic                   weight 1 / RMS of the first non-zero values of the variable the
 //                               models see (iqni: the residual; ibqn: x and y), then frozen,
@@ -27,8 +39,10 @@ namespace cocopp {
 
 class VariableScaling {
  public:
-  /// Reads `scaling` from the coupled solver's settings.
-  explicit VariableScaling(const Settings& coupled_solver_settings);
+  /// Reads `scaling` from the coupled solver's settings; `residual_sum_by_default`: what an
+  /// absent key means.
+  explicit VariableScaling(const Settings& coupled_solver_settings,
+                           bool residual_sum_by_default = false);
 
   /// Lay the weights out on the interfaces whose values get weighted (x for iqni; x and y
   /// for ibqn). A named variable on none of them is a case error that lists those present.
@@ -41,13 +55,26 @@ class VariableScaling {
   /// The unweighted values of weighted ones (after apply() has fixed the weights they used).
   Eigen::VectorXd remove(std::size_t index, const Eigen::VectorXd& weighted) const;
 
+  /// apply() and remove() on values laid out as every bound interface one after the other
+  /// (a stacked unknown: x, then y).
+  Eigen::VectorXd apply_all(const Eigen::VectorXd& values);
+  Eigen::VectorXd remove_all(const Eigen::VectorXd& weighted) const;
+
   /// The weight of every value of interface `index` as fixed so far: apply() is
   /// values.cwiseProduct(weights(index)). Empty when scaling is off.
   const Eigen::VectorXd& weights(std::size_t index) const {
     return enabled() ? layouts_.at(index).weights : no_weights_;
   }
 
-  bool enabled() const { return automatic_ || !fixed_.empty(); }
+  bool enabled() const { return automatic_ || residual_sum_ || !fixed_.empty(); }
+  /// Whether the weights change with every residual (residual_sum).
+  bool changing() const { return residual_sum_; }
+  /// residual_sum: take the residual r (laid out as apply_all's values) into the sums.
+  void accumulate(const Eigen::VectorXd& r);
+  /// residual_sum: the weights from the sums so far, if one of them moved by more than 10 %;
+  /// returns, per value, the new weight over the old one (for Model::rescale), or nothing
+  /// when the weights in use stay.
+  Eigen::VectorXd refresh();
   /// "automatic" or "pressure 1e-05, traction 1"; "" when off.
   std::string describe() const;
   /// The weight of each variable, as fixed so far (for the saved state).
@@ -65,6 +92,8 @@ class VariableScaling {
   void refresh_weights();
 
   bool automatic_ = false;
+  bool residual_sum_ = false;
+  std::map<std::string, double> sums_;     ///< residual_sum: the sums s_v
   std::map<std::string, double> fixed_;    ///< from the case file
   std::map<std::string, double> weights_;  ///< in use: fixed_, plus automatic ones found so far
   std::vector<Layout> layouts_;

@@ -1,147 +1,33 @@
-#include "coupler/schemes/serial_scheme.hpp"
-
-#include <fmt/format.h>
-
-#include "coupler/results/run_outcome.hpp"
-#include "coupler/schemes/stopwatch.hpp"
-#include "solver_wrappers/solver_error.hpp"
+// serial: the solvers one after the other, x~ = S(F(x)) (the serial scheme of CoCoNuT and
+// preCICE). The unknown is x; S takes F's loads (or what a coupled solver that updates y too
+// makes of them: LoadsUpdate).
+#include "coupler/schemes/coupling_scheme.hpp"
 
 namespace cocopp {
+namespace {
 
-SerialScheme::SerialScheme(SolverWrapper& first, SolverWrapper& second, Backtracking backtracking,
-                           std::string divergence_advice)
-    : solvers_{&first, &second},
-      backtracking_(backtracking),
-      divergence_advice_(std::move(divergence_advice)) {}
+class SerialScheme : public CouplingScheme {
+ public:
+  SerialScheme(const Settings&, Parts parts) : CouplingScheme(std::move(parts)) {}
 
-void SerialScheme::start() {
-  // Both processes start side by side: each takes milliseconds to load and read its input.
-  for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->start(); });
-  for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->initialize(); });
-  for (auto* solver : solvers_) solver->overlap_step_requests();
-  adopt_interfaces();
-  check_interfaces_match();
-  x_ = solvers_[0]->input_interface();
-  y_ = solvers_[0]->output_interface();
-  // Start from the displacement the second solver reports for its initial state.
-  x_.set_data(solvers_[1]->output_interface().data());
-}
+  std::vector<const Interface*> unknown_layouts() const override { return {&x_}; }
+  Eigen::VectorXd unknown() const override { return x_.data(); }
+  void set_unknown(const Eigen::VectorXd& u) override { x_.set_data(u); }
+  bool side_by_side() const override { return false; }
 
-void SerialScheme::adopt_interfaces() {
-  if (solvers_[0]->adopts_interfaces() && solvers_[1]->adopts_interfaces())
-    throw std::runtime_error(fmt::format(
-        "solvers '{}' and '{}' are both mapped: one of them must keep its own interface, which "
-        "the other maps onto",
-        solvers_[0]->name(), solvers_[1]->name()));
-  for (int i = 0; i < 2; ++i) {
-    SolverWrapper& other = *solvers_[1 - i];
-    if (solvers_[i]->adopts_interfaces())
-      timed(i, [&] {
-        solvers_[i]->adopt_interfaces(other.output_interface(), other.input_interface());
-      });
+  Eigen::VectorXd evaluate(const Eigen::VectorXd& x, int iteration) override {
+    x_.set_data(x);
+    const Interface& y = timed_solve(0, x_);
+    check_finite(y, *solvers_[0], iteration);
+    y_.set_data(loads_update_ ? loads_update_(x, y.data()) : y.data());
+    const Interface& xt = timed_solve(1, y_);
+    check_finite(xt, *solvers_[1], iteration);
+    return xt.data();
   }
-}
+};
 
-void SerialScheme::check_interfaces_match() const {
-  const SolverWrapper& first = *solvers_[0];
-  const SolverWrapper& second = *solvers_[1];
-  auto mismatch = [](const SolverWrapper& from, const Interface& out, const SolverWrapper& to,
-                     const Interface& in) {
-    return std::runtime_error(fmt::format(
-        "the interfaces of the solvers do not fit together: '{}' gives [{}] but '{}' takes "
-        "[{}]. Both sides need the same model parts, point counts and variables in the same "
-        "order (non-matching meshes need a mapper)",
-        from.name(), out.describe(), to.name(), in.describe()));
-  };
-  if (!first.output_interface().same_layout(second.input_interface()))
-    throw mismatch(first, first.output_interface(), second, second.input_interface());
-  if (!second.output_interface().same_layout(first.input_interface()))
-    throw mismatch(second, second.output_interface(), first, first.input_interface());
-}
+}  // namespace
 
-template <class Call>
-void SerialScheme::timed(int index, Call call) {
-  // Also a call that throws (a rejected input) took the solver's time, not the coupler's.
-  const Stopwatch stopwatch(step_times_[index], total_times_[index]);
-  call();
-}
-
-const Interface& SerialScheme::timed_solve(int index, const Interface& input) {
-  const Interface* output = nullptr;
-  timed(index, [&] { output = &solvers_[index]->solve(input); });
-  return *output;
-}
-
-void SerialScheme::begin_step(int step, double time) {
-  step_ = step;
-  step_times_ = {0.0, 0.0};
-  for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->initialize_step(step, time); });
-}
-
-Eigen::VectorXd SerialScheme::evaluate(const Eigen::VectorXd& x, int iteration) {
-  x_.set_data(x);
-  const Interface& y = timed_solve(0, x_);
-  check_finite(y, *solvers_[0], iteration);
-  y_.set_data(loads_update_ ? loads_update_(x, y.data()) : y.data());
-  const Interface& xt = timed_solve(1, y_);
-  check_finite(xt, *solvers_[1], iteration);
-  return xt.data();
-}
-
-Eigen::VectorXd SerialScheme::evaluate_stepping_back(Eigen::VectorXd& x,
-                                                     const Eigen::VectorXd& accepted, int iteration,
-                                                     std::vector<std::string>& notes) {
-  std::string first_rejection;  // the one that says what went wrong with the iteration's input
-  for (int retry = 1;; ++retry) {
-    try {
-      return evaluate(x, iteration);
-    } catch (const SolverRejectedInput& e) {
-      if (first_rejection.empty()) first_rejection = e.what();
-      if (retry > backtracking_.retries)
-        throw SolverError(
-            e.solver_name(),
-            fmt::format("{}\n(time step {}, coupling iteration {}: the coupled solver stepped "
-                        "back {} times towards the last input both solvers accepted, "
-                        "coupled_solver.backtracking.retries = {})",
-                        first_rejection, step_, iteration, backtracking_.retries,
-                        backtracking_.retries));
-      // The rejected input lies too far from one the solver can take: the step towards it
-      // from the last accepted input is too long, whatever made it (a quasi-Newton update
-      // from poor secant information, an extrapolating predictor).
-      x = accepted + backtracking_.factor * (x - accepted);
-      notes.push_back(fmt::format(
-          "solver '{}' rejected the input of iteration {}: the step from the last accepted "
-          "input was shortened {} time(s) by {:g}",
-          e.solver_name(), iteration, retry, backtracking_.factor));
-    }
-  }
-}
-
-void SerialScheme::commit_step() {
-  for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->finalize_step(); });
-  for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->output_step(); });
-  // Both solvers commit and write side by side; a failure there still ends this step.
-  for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->complete_step_requests(); });
-}
-
-void SerialScheme::save_restarts(int step) {
-  for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->save_restart(step); });
-}
-
-void SerialScheme::check_finite(const Interface& data, const SolverWrapper& solver,
-                                int iteration) const {
-  if (data.data().allFinite()) return;
-  for (const auto& block : data.blocks()) {
-    const auto values = data.values(block.model_part, block.variable);
-    for (Eigen::Index point = 0; point < values.rows(); ++point)
-      if (!values.row(point).allFinite())
-        throw DivergenceError(DivergenceKind::kNonFinite, step_, iteration,
-                              fmt::format("solver '{}' returned a non-finite {} at model part "
-                                          "'{}', point {} (of {}), in time step {}, coupling "
-                                          "iteration {}. {}",
-                                          solver.name(), block.variable, block.model_part, point,
-                                          values.rows(), step_, iteration, divergence_advice_));
-  }
-}
+COCOPP_REGISTER(CouplingSchemeRegistry, "serial", SerialScheme)
 
 }  // namespace cocopp

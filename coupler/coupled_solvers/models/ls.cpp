@@ -27,6 +27,12 @@ class LeastSquares : public Model {
 
   bool is_ready() const override { return !columns_.empty(); }
 
+  bool rescalable() const override { return true; }
+  void rescale(const Eigen::VectorXd& factors) override {
+    columns_.rescale(factors);
+    if (has_reference_) r_ref_ = r_ref_.cwiseProduct(factors);
+  }
+
   Eigen::VectorXd predict(const Eigen::VectorXd& dr) override {
     if (columns_.empty()) return Eigen::VectorXd::Zero(xt_ref_.size());
     return columns_.combine_w(columns_.coefficients(dr));

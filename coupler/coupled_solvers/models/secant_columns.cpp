@@ -90,6 +90,15 @@ void SecantColumns::refactorize() {
   }
 }
 
+void SecantColumns::rescale(const Eigen::VectorXd& factors) {
+  for (std::size_t i = 0; i < columns_.size(); ++i) {
+    columns_[i].v = columns_[i].v.cwiseProduct(factors);
+    norms_[i] = columns_[i].v.norm();
+  }
+  refactorize();
+  filter();
+}
+
 void SecantColumns::age_and_drop(int max_age) {
   for (auto& column : columns_) ++column.age;
   while (!columns_.empty() && columns_.back().age > max_age) {

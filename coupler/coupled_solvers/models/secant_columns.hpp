@@ -68,6 +68,9 @@ class SecantColumns {
   Eigen::VectorXd combine_w(const Eigen::VectorXd& c) const;
   Eigen::VectorXd combine_v(const Eigen::VectorXd& c) const;
 
+  /// The residual's weights changed (scaling: residual_sum): every v times `factors` (new
+  /// weight over old, per value), the QR factorization recomputed and the filter applied.
+  void rescale(const Eigen::VectorXd& factors);
   /// A time step ended: every column gets one step older; those older than `max_age` go.
   void age_and_drop(int max_age);
 

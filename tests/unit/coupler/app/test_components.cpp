@@ -25,17 +25,19 @@ bool contains(const std::vector<std::string>& names, const std::string& name) {
 
 TEST(Components, EveryKindACaseCanNameIsListed) {
   const auto kinds = listed();
-  for (const char* kind : {"coupled solvers", "models", "predictors", "convergence criteria",
-                           "solver wrappers", "interpolators", "transformers", "outputs"}) {
+  for (const char* kind :
+       {"coupled solvers", "coupling schemes", "models", "predictors", "convergence criteria",
+        "solver wrappers", "interpolators", "transformers", "outputs"}) {
     ASSERT_TRUE(kinds.count(kind)) << kind;
     EXPECT_FALSE(kinds.at(kind).empty()) << kind;
   }
-  EXPECT_EQ(kinds.size(), 8u);
+  EXPECT_EQ(kinds.size(), 9u);
 }
 
 TEST(Components, EveryTypeIsRegistered) {
   const std::map<std::string, std::vector<std::string>> expected = {
       {"coupled solvers", {"aitken", "explicit", "gauss_seidel", "ibqn", "iqni", "relaxation"}},
+      {"coupling schemes", {"parallel", "serial"}},
       {"models", {"ls", "mv", "mvmf"}},
       {"predictors", {"constant", "cubic", "legacy", "linear", "quadratic"}},
       {"convergence criteria", {"absolute_norm", "and", "iteration_limit", "or", "relative_norm"}},

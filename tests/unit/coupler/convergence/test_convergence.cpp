@@ -49,6 +49,38 @@ TEST(Convergence, RelativeNormIsRelativeToTheFirstResidualOfTheStep) {
   EXPECT_FALSE(c->is_satisfied());
 }
 
+// Side by side (scheme parallel) the first displacement residual can be tiny while the next
+// is not: `reference: largest` measures against the largest residual of the step so far.
+TEST(Convergence, RelativeNormToTheLargestResidualOfTheStep) {
+  auto c = make("type: relative_norm\ntolerance: 1e-2\nreference: largest");
+  c->initialize_step();
+  c->update(residual(1e-6));
+  c->update(residual(10.0));
+  c->update(residual(0.2));
+  EXPECT_FALSE(c->is_satisfied());
+  c->update(residual(0.05));
+  EXPECT_TRUE(c->is_satisfied());
+  EXPECT_NE(c->describe().find("to the largest"), std::string::npos) << c->describe();
+  auto first = make("type: relative_norm\ntolerance: 1e-2");
+  first->initialize_step();
+  for (double norm : {1e-6, 10.0, 0.2, 0.05}) first->update(residual(norm));
+  EXPECT_FALSE(first->is_satisfied());  // 0.05 against the first 1e-6
+}
+
+// A combination says whether it stopped at an iteration limit, so that a second criterion
+// (the loads' side by side) cannot keep a step going past it.
+TEST(Convergence, LimitReachedIsSeenThroughCombinations) {
+  auto c = make(
+      "type: or\ncriteria:\n  - {type: absolute_norm, tolerance: 1e-9}\n"
+      "  - {type: iteration_limit, maximum: 2}");
+  c->initialize_step();
+  c->update(residual(1));
+  EXPECT_FALSE(c->limit_reached());
+  c->update(residual(1));
+  EXPECT_TRUE(c->limit_reached());
+  EXPECT_FALSE(make("type: absolute_norm\ntolerance: 1")->limit_reached());
+}
+
 TEST(Convergence, RelativeNormWithZeroFirstResidualIsConverged) {
   auto c = make("type: relative_norm\ntolerance: 1e-6");
   c->initialize_step();

@@ -1,4 +1,5 @@
 // Coupled solvers on an affine coupled problem with a known solution.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -17,31 +18,40 @@ namespace {
 /// Flow y = A x + b and structure x = B y with B A = `coupling` (a symmetric matrix of chosen
 /// eigenvalues) so that Gauss-Seidel converges iff all |eigenvalues| < 1.
 struct Problem {
-  Problem(int n, double low, double high) : part(cocopp::testing::line_model_part(n)) {
+  /// `load_scale`: the loads' size against the displacement's (the fixed point's displacement
+  /// does not change with it).
+  Problem(int n, double low, double high, double load_scale = 1.0)
+      : part(cocopp::testing::line_model_part(n)) {
     const Eigen::MatrixXd q = Eigen::MatrixXd::Random(n, n).householderQr().householderQ();
     const Eigen::VectorXd eigenvalues = Eigen::VectorXd::LinSpaced(n, low, high);
     const Eigen::MatrixXd coupling = q * eigenvalues.asDiagonal() * q.transpose();
-    const Eigen::MatrixXd a = Eigen::MatrixXd::Identity(n, n) * 2.0;
-    const Eigen::MatrixXd b = coupling / 2.0;
-    const Eigen::VectorXd offset = Eigen::VectorXd::LinSpaced(n, 1.0, 2.0);
+    const Eigen::MatrixXd a = Eigen::MatrixXd::Identity(n, n) * 2.0 * load_scale;
+    const Eigen::MatrixXd b = coupling / (2.0 * load_scale);
+    const Eigen::VectorXd offset = Eigen::VectorXd::LinSpaced(n, 1.0, 2.0) * load_scale;
     flow = std::make_unique<AffineSolver>("flow", part, "displacement", "pressure", a, offset);
     structure = std::make_unique<AffineSolver>("structure", part, "pressure", "displacement", b,
                                                Eigen::VectorXd::Zero(n));
-    solution = (Eigen::MatrixXd::Identity(n, n) - coupling).lu().solve(b * offset);
+    solution = (Eigen::MatrixXd::Identity(n, n) - coupling).lu().solve(b * offset);  // B A = C
   }
   std::shared_ptr<const ModelPart> part;
   std::unique_ptr<AffineSolver> flow, structure;
   Eigen::VectorXd solution;  ///< radial displacement at the fixed point
 };
 
-std::unique_ptr<CoupledSolver> make(const std::string& type_and_settings,
-                                    int max_iterations = 100) {
-  const std::string yaml = type_and_settings +
-                           "\npredictor: {type: constant}\n"
-                           "convergence_criterion:\n  type: or\n  criteria:\n"
-                           "    - {type: absolute_norm, tolerance: 1e-10}\n"
-                           "    - {type: iteration_limit, maximum: " +
-                           std::to_string(max_iterations) + "}\n";
+std::unique_ptr<CoupledSolver> make(const std::string& type_and_settings, int max_iterations = 100,
+                                    double load_tolerance = 1e-10) {
+  // Side by side the loads' residual is measured too (absolute, `load_tolerance`).
+  const bool parallel = type_and_settings.find("scheme: parallel") != std::string::npos;
+  const std::string yaml =
+      type_and_settings +
+      (parallel ? fmt::format("\nload_criterion: {{type: absolute_norm, tolerance: {:g}}}",
+                              load_tolerance)
+                : "") +
+      "\npredictor: {type: constant}\n"
+      "convergence_criterion:\n  type: or\n  criteria:\n"
+      "    - {type: absolute_norm, tolerance: 1e-10}\n"
+      "    - {type: iteration_limit, maximum: " +
+      std::to_string(max_iterations) + "}\n";
   return CoupledSolverRegistry::instance().create(Settings::load_string(yaml, "case.yaml"));
 }
 
@@ -152,6 +162,61 @@ TEST(CoupledSolvers, IqnIlsSolvesALinearProblemInAtMostNPlusTwoIterations) {
   const StepRecord record = solve_one_step(*coupled, problem);
   // n secant columns (from n + 1 evaluations) span the space; the next evaluation converges.
   EXPECT_LE(record.iterations, n + 2);
+}
+
+// The solvers side by side (scheme parallel): the unknown is the radial displacement and the
+// pressure stacked, 2n values that matter, and the map (x, y) -> (S(y), F(x)) is affine, so
+// IQN-ILS spans it after 2n + 1 evaluations, with the residual-sum weights changing every
+// iteration of the first step (the columns re-expressed in them exactly). Its fixed point is
+// the serial one.
+TEST(CoupledSolvers, SideBySideIqnIlsSolvesALinearProblemInAtMostTwiceNPlusTwoIterations) {
+  const int n = 8;
+  Problem problem(n, -80.0, -1.2);
+  auto coupled = make("type: iqni\nscheme: parallel\nomega: 0.01\nmodel: {type: ls}");
+  const StepRecord record = solve_one_step(*coupled, problem);
+  // 2n + 2 evaluations span it; the last of them lands at 1.3e-10 here, the round-off of a
+  // residual amplified 100-fold on the way, just above the 1e-10 threshold: one more.
+  EXPECT_LE(record.iterations, 2 * n + 3);
+  EXPECT_NE(coupled->describe().find("side by side"), std::string::npos) << coupled->describe();
+}
+
+// The loads a million times the displacement (their tolerance too): the residual-sum weights
+// give each its say, and the iterations are those of the problem of equal sizes.
+TEST(CoupledSolvers, SideBySideWeighsLoadsAgainstDisplacement) {
+  const int n = 8;
+  Problem problem(n, -80.0, -1.2, 1e6);
+  auto coupled = make("type: iqni\nscheme: parallel\nomega: 0.01\nmodel: {type: ls}", 100, 1e-4);
+  const StepRecord record = solve_one_step(*coupled, problem);
+  EXPECT_LE(record.iterations, 2 * n + 3);
+}
+
+TEST(CoupledSolvers, SideBySideAitkenConverges) {
+  Problem problem(8, -0.9, 0.5);
+  auto coupled = make("type: aitken\nscheme: parallel\nomega_max: 0.5");
+  solve_one_step(*coupled, problem);
+}
+
+TEST(CoupledSolvers, SchemesAreChosenByNameAndSerialOnlyTypesSaySo) {
+  std::string message = cocopp::testing::error_message<CaseError>(
+      [] { make("type: iqni\nscheme: paralel\nmodel: {type: ls}"); });
+  EXPECT_NE(message.find("did you mean 'parallel'"), std::string::npos) << message;
+  message = cocopp::testing::error_message<CaseError>(
+      [] { make("type: ibqn\nscheme: parallel\nmodel_f: {type: ls}\nmodel_s: {type: ls}"); });
+  EXPECT_NE(message.find("cannot run the solvers side by side"), std::string::npos) << message;
+  message = cocopp::testing::error_message<CaseError>([] {
+    make("type: iqni\nload_criterion: {type: relative_norm, tolerance: 1e-6}\nmodel: {type: ls}");
+  });
+  EXPECT_NE(message.find("only the parallel scheme"), std::string::npos) << message;
+  message = cocopp::testing::error_message<CaseError>(
+      [] { make("type: iqni\nscheme: parallel\nmodel: {type: mv}"); });
+  EXPECT_NE(message.find("residual_sum"), std::string::npos) << message;
+  message = cocopp::testing::error_message<CaseError>([] {
+    CoupledSolverRegistry::instance().create(Settings::load_string(
+        "type: relaxation\nscheme: parallel\nomega: 0.5\npredictor: {type: constant}\n"
+        "convergence_criterion: {type: absolute_norm, tolerance: 1e-10}\n",
+        "case.yaml"));
+  });
+  EXPECT_NE(message.find("needs a load_criterion"), std::string::npos) << message;
 }
 
 // Anderson's mixing: the unexplained part of the residual relaxed by beta. The secant columns
