@@ -46,6 +46,12 @@ void VariableScaling::bind(const std::vector<const Interface*>& layouts) {
 }
 
 void VariableScaling::refresh_weights() {
+  if (residual_sum_) {  // one weight per field
+    field_weights_.resize(layouts_.size(), 1.0);
+    for (std::size_t i = 0; i < layouts_.size(); ++i)
+      layouts_[i].weights.setConstant(field_weights_[i]);
+    return;
+  }
   for (Layout& layout : layouts_)
     for (const auto& block : layout.blocks) {
       const auto found = weights_.find(block.variable);
@@ -86,48 +92,42 @@ Eigen::VectorXd VariableScaling::remove(std::size_t index, const Eigen::VectorXd
 }
 
 void VariableScaling::accumulate(const Eigen::VectorXd& r) {
-  std::map<std::string, double> squares;
-  Eigen::Index offset = 0;
-  for (const Layout& layout : layouts_) {
-    for (const auto& block : layout.blocks)
-      squares[block.variable] +=
-          r.segment(offset + block.offset, block.points * block.components).squaredNorm();
-    offset += layout.weights.size();
-  }
   const double total = r.norm();
   if (!(total > 0.0) || !std::isfinite(total)) return;
-  for (const auto& [variable, square] : squares) sums_[variable] += std::sqrt(square) / total;
+  field_sums_.resize(layouts_.size(), 0.0);
+  Eigen::Index offset = 0;
+  for (std::size_t i = 0; i < layouts_.size(); ++i) {
+    const Eigen::Index size = layouts_[i].weights.size();
+    field_sums_[i] += r.segment(offset, size).norm() / total;
+    offset += size;
+  }
 }
 
 Eigen::VectorXd VariableScaling::refresh() {
-  std::vector<Eigen::VectorXd> old;
-  Eigen::Index size = 0;
-  for (const Layout& layout : layouts_) {
-    old.push_back(layout.weights);
-    size += layout.weights.size();
-  }
-  // A variable whose sum is still zero keeps its weight (1 until it has a residual). Weights
+  // A field whose sum is still zero keeps its weight (1 until it has a residual). Weights
   // within 10 % of those in use stay: re-expressing the models' columns costs a QR
   // factorization, and any fixed weights are as consistent as new ones.
-  std::map<std::string, double> candidate = weights_;
+  field_weights_.resize(layouts_.size(), 1.0);
+  field_sums_.resize(layouts_.size(), 0.0);
+  std::vector<double> candidate = field_weights_;
   bool changed = false;
-  for (const auto& [variable, sum] : sums_) {
-    if (!(sum > 0.0)) continue;
-    const double weight = 1.0 / sum;
-    const auto in_use = weights_.find(variable);
-    if (in_use == weights_.end() || std::abs(weight / in_use->second - 1.0) > 0.1) changed = true;
-    candidate[variable] = weight;
+  for (std::size_t i = 0; i < layouts_.size(); ++i) {
+    if (!(field_sums_[i] > 0.0)) continue;
+    candidate[i] = 1.0 / field_sums_[i];
+    if (std::abs(candidate[i] / field_weights_[i] - 1.0) > 0.1) changed = true;
   }
   if (!changed) return {};
-  weights_ = std::move(candidate);
-  refresh_weights();
+  Eigen::Index size = 0;
+  for (const Layout& layout : layouts_) size += layout.weights.size();
   Eigen::VectorXd factors(size);
   Eigen::Index offset = 0;
   for (std::size_t i = 0; i < layouts_.size(); ++i) {
     const Eigen::Index n = layouts_[i].weights.size();
-    factors.segment(offset, n) = layouts_[i].weights.cwiseQuotient(old[i]);
+    factors.segment(offset, n).setConstant(candidate[i] / field_weights_[i]);
     offset += n;
   }
+  field_weights_ = std::move(candidate);
+  refresh_weights();
   return factors;
 }
 
@@ -156,20 +156,30 @@ Eigen::VectorXd VariableScaling::remove_all(const Eigen::VectorXd& weighted) con
 }
 
 void VariableScaling::save_state(State& state) const {
-  for (const auto& [variable, weight] : weights_) state.set(variable, weight);
-  if (residual_sum_) {
-    State& sums = state.group("sums");
-    for (const auto& [variable, sum] : sums_) sums.set(variable, sum);
+  if (residual_sum_) {  // per field: its sum and the weight in use
+    for (std::size_t i = 0; i < field_sums_.size(); ++i) {
+      state.group("sums").set(std::to_string(i), field_sums_[i]);
+      state.group("weights").set(std::to_string(i), field_weights_.at(i));
+    }
+    return;
   }
+  for (const auto& [variable, weight] : weights_) state.set(variable, weight);
 }
 
 void VariableScaling::load_state(const State& state) {
+  if (residual_sum_) {
+    field_sums_.assign(layouts_.size(), 0.0);
+    field_weights_.assign(layouts_.size(), 1.0);
+    for (std::size_t i = 0; i < layouts_.size(); ++i)
+      if (state.has_group("sums") && state.group("sums").has(std::to_string(i))) {
+        field_sums_[i] = state.group("sums").scalar(std::to_string(i));
+        field_weights_[i] = state.group("weights").scalar(std::to_string(i));
+      }
+    refresh_weights();
+    return;
+  }
   weights_.clear();
   for (const auto& [variable, array] : state.arrays()) weights_[variable] = state.scalar(variable);
-  sums_.clear();
-  if (residual_sum_ && state.has_group("sums"))
-    for (const auto& [variable, array] : state.group("sums").arrays())
-      sums_[variable] = state.group("sums").scalar(variable);
   refresh_weights();
 }
 

@@ -10,15 +10,18 @@
 //                               solver asks for it (the parallel scheme: displacement and
 //                               loads side by side in one unknown)
 //   none                        all weights 1
-//   residual_sum                weight 1 / s_v, with s_v the sum over every coupling iteration
-//                               so far of ||r_v|| / ||r|| (r_v the variable's part of the
-//                               residual), updated every iteration (preCICE's residual-sum
-//                               preconditioner, summed over the run instead of a step: a
-//                               step's first displacement residual can be near zero side by
-//                               side). The weights change at the start of a step (every
-//                               iteration in the run's first step), so that a step's secant
-//                               columns share them; the models re-express the columns they
-//                               keep in new weights (Model::rescale; `ls` can).
+//   residual_sum                one weight per field (x; y: all its variables together),
+//                               1 / s_f, with s_f the sum over every coupling iteration so far
+//                               of ||r_f|| / ||r|| (r_f the field's part of the residual):
+//                               preCICE's residual-sum preconditioner, summed over the run
+//                               instead of a step (a step's first displacement residual can be
+//                               near zero side by side). Per field, not per variable: a small,
+//                               noisy variable (a wall's viscous traction beside its pressure)
+//                               weighed up to the others' size makes the fit chase its noise. The
+//                               weights change at the start of a step (every iteration in the run's
+//                               first step), so that a step's secant columns share them; the models
+//                               re-express the columns they keep in new weights (Model::rescale;
+//                               `ls` can).
 //   {pressure: 1e-5, ...}       fixed weight per variable (others 1)
 //   automatic                   weight 1 / RMS of the first non-zero values of the variable the
 //                               models see (iqni: the residual; ibqn: x and y), then frozen,
@@ -69,7 +72,7 @@ class VariableScaling {
   bool enabled() const { return automatic_ || residual_sum_ || !fixed_.empty(); }
   /// Whether the weights change with every residual (residual_sum).
   bool changing() const { return residual_sum_; }
-  /// residual_sum: take the residual r (laid out as apply_all's values) into the sums.
+  /// residual_sum: take the residual r (laid out as apply_all's values) into the fields' sums.
   void accumulate(const Eigen::VectorXd& r);
   /// residual_sum: the weights from the sums so far, if one of them moved by more than 10 %;
   /// returns, per value, the new weight over the old one (for Model::rescale), or nothing
@@ -93,7 +96,8 @@ class VariableScaling {
 
   bool automatic_ = false;
   bool residual_sum_ = false;
-  std::map<std::string, double> sums_;     ///< residual_sum: the sums s_v
+  std::vector<double> field_sums_;         ///< residual_sum: the sums s_f, one per bound interface
+  std::vector<double> field_weights_;      ///< residual_sum: the weights in use, one per interface
   std::map<std::string, double> fixed_;    ///< from the case file
   std::map<std::string, double> weights_;  ///< in use: fixed_, plus automatic ones found so far
   std::vector<Layout> layouts_;
