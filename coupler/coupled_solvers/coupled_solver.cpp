@@ -181,7 +181,6 @@ bool CoupledSolver::update_criteria(const Eigen::VectorXd& r, bool& tolerance_me
     return criterion_->is_satisfied();
   }
   load_criterion_->update(scheme_->loads_part(r));
-  if (std::getenv("COCOPP_DEBUG_LOADS")) fmt::print(stderr, "DBG x {:.3e} y {:.3e}\n", scheme_->displacement_part(r).norm(), scheme_->loads_part(r).norm());
   tolerance_met = criterion_->tolerance_met() && load_criterion_->tolerance_met();
   // An iteration limit in either criterion ends the step; a tolerance needs both.
   return tolerance_met || criterion_->limit_reached() || load_criterion_->limit_reached();

@@ -40,7 +40,9 @@ void expect_same_results(const fs::path& expected, const fs::path& actual) {
   }
 }
 
-std::string flow_structure_case(int steps, int state_interval) {
+/// `side_by_side`: the solvers side by side (scheme parallel), whose state holds x and y and the
+/// residual-sum weights.
+std::string flow_structure_case(int steps, int state_interval, bool side_by_side = false) {
   return R"(settings: {delta_t: 1.0e-4, number_of_timesteps: )" + std::to_string(steps) +
          ", state_interval: " + std::to_string(state_interval) + R"(,
            watchpoints: [{name: middle, coordinates: [0, 0.005, 0.00025]}]}
@@ -49,10 +51,17 @@ coupled_solver:
   omega: 0.05
   model: {type: ls, q: 10, min_significant: 1.0e-12}
   predictor: {type: linear}
+)" +
+         (side_by_side ? R"(  scheme: parallel
+  load_criterion: {type: absolute_norm, tolerance: 1.0e-4}
   convergence_criterion:
     type: or
+    criteria: [{type: absolute_norm, tolerance: 1.0e-11}, {type: iteration_limit, maximum: 50}]
+)"
+                       : R"(  convergence_criterion:
+    type: or
     criteria: [{type: relative_norm, tolerance: 1.0e-6}, {type: iteration_limit, maximum: 15}]
-solver_wrappers:
+)") + R"(solver_wrappers:
   - {type: tube_flow, name: flow, working_directory: flow}
   - {type: tube_structure, name: structure, working_directory: structure}
 )";
@@ -70,8 +79,8 @@ class Restart : public ::testing::Test {
     fs::remove_all(dir_);
   }
   /// The uninterrupted run of `steps` steps, in the reference directory.
-  void run_reference(int steps) {
-    write_text(reference_ / "case.yaml", flow_structure_case(steps, 0));
+  void run_reference(int steps, bool side_by_side = false) {
+    write_text(reference_ / "case.yaml", flow_structure_case(steps, 0, side_by_side));
     const CommandResult run = run_cocopp("run --quiet " + (reference_ / "case.yaml").string());
     ASSERT_EQ(run.exit_code, 0) << run.output;
   }
@@ -108,6 +117,25 @@ TEST_F(Restart, ARunContinuedAfterItsEndEqualsTheUninterruptedRun) {
   const CommandResult by_key = run_cocopp("run --quiet " + (dir_ / "case.yaml").string());
   ASSERT_EQ(by_key.exit_code, 0) << by_key.output;
   expect_same_results(results(reference_), results(dir_));
+}
+
+// Side by side the state holds x and y (the predictor's history of both, the secant columns of
+// the stacked unknown) and the residual-sum weights: the restarted run is the same bit for bit.
+TEST_F(Restart, ASideBySideRunContinuesAsTheUninterruptedOne) {
+  run_reference(100, true);
+  write_text(dir_ / "case.yaml", flow_structure_case(50, 0, true));
+  const CommandResult first = run_cocopp("run --quiet " + (dir_ / "case.yaml").string());
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  write_text(dir_ / "case.yaml", flow_structure_case(100, 0, true));
+  const CommandResult second = run_cocopp("run --restart " + (dir_ / "case.yaml").string());
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  expect_same_results(results(reference_), results(dir_));
+  // A serial run cannot continue it: the saved unknown is x and y.
+  write_text(dir_ / "case.yaml", flow_structure_case(120, 0));
+  const CommandResult serial = run_cocopp("run --restart " + (dir_ / "case.yaml").string());
+  EXPECT_NE(serial.exit_code, 0);
+  EXPECT_NE(serial.output.find("continues with the same scheme"), std::string::npos)
+      << serial.output;
 }
 
 // A run killed (SIGKILL, no chance to write anything) somewhere after step 57, with the state
