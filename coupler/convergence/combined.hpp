@@ -21,6 +21,9 @@ class Combined : public ConvergenceCriterion {
   void initialize_step() override {
     for (auto& c : criteria_) c->initialize_step();
   }
+  void set_output(const Eigen::VectorXd& output) override {
+    for (auto& c : criteria_) c->set_output(output);
+  }
   void update(const Eigen::VectorXd& r) override {
     for (auto& c : criteria_) c->update(r);
   }

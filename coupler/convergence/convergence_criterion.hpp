@@ -32,6 +32,9 @@ class ConvergenceCriterion {
   virtual void initialize_step() = 0;
   /// Called with the residual r = x~ - x of every coupling iteration.
   virtual void update(const Eigen::VectorXd& residual) = 0;
+  /// Called before update() with the solver output the residual belongs to (x~; y~ for the
+  /// loads' criterion side by side): for criteria relative to the values.
+  virtual void set_output(const Eigen::VectorXd& /*output*/) {}
   /// Stop iterating.
   virtual bool is_satisfied() const = 0;
   /// Stopped because the tolerance was met (not only because of an iteration limit).

@@ -153,7 +153,7 @@ StepRecord CoupledSolver::iterate_step(int step, double time) {
       tolerance_met = true;
       break;
     }
-    const bool stop = update_criteria(r, tolerance_met);
+    const bool stop = update_criteria(r, ut, tolerance_met);
     // The progress text is formatted for an observer, else once for the step's last iteration:
     // formatting it every iteration cost 7 % of the coupler's time on the tube.
     if (iteration_observer_)
@@ -166,7 +166,7 @@ StepRecord CoupledSolver::iterate_step(int step, double time) {
     }
     u = next_input(u, ut, r);
   }
-  if (iterates()) record.criterion_progress = criterion_->progress();
+  if (iterates()) record.criterion_progress = progress();
   for (auto& note : take_notes()) notes.push_back(std::move(note));
   record.warnings = count_repeats(notes);
   record.converged = tolerance_met;
@@ -174,13 +174,28 @@ StepRecord CoupledSolver::iterate_step(int step, double time) {
   return record;
 }
 
-bool CoupledSolver::update_criteria(const Eigen::VectorXd& r, bool& tolerance_met) {
+std::string CoupledSolver::progress() const {
+  const std::string displacement = criterion_->progress();
+  if (!load_criterion_) return displacement;
+  // Side by side the loads' residual is the other half of the story.
+  const std::string measured = load_criterion_->progress();
+  const std::string loads =
+      "loads " + (measured.empty() ? fmt::format("{:.3e}", last_load_residual_) : measured);
+  return displacement.empty() ? loads : displacement + ", " + loads;
+}
+
+bool CoupledSolver::update_criteria(const Eigen::VectorXd& r, const Eigen::VectorXd& ut,
+                                    bool& tolerance_met) {
+  criterion_->set_output(scheme_->displacement_part(ut));
   criterion_->update(convergence_residual(scheme_->displacement_part(r)));
   if (!load_criterion_) {
     tolerance_met = criterion_->tolerance_met();
     return criterion_->is_satisfied();
   }
-  load_criterion_->update(scheme_->loads_part(r));
+  const Eigen::VectorXd ry = scheme_->loads_part(r);
+  load_criterion_->set_output(scheme_->loads_part(ut));
+  load_criterion_->update(ry);
+  last_load_residual_ = ry.norm();
   tolerance_met = criterion_->tolerance_met() && load_criterion_->tolerance_met();
   // An iteration limit in either criterion ends the step; a tolerance needs both.
   return tolerance_met || criterion_->limit_reached() || load_criterion_->limit_reached();

@@ -161,8 +161,11 @@ class CoupledSolver {
   void check_divergence(const std::vector<double>& norms, int step, double time,
                         std::vector<std::string>& notes) const;
 
-  /// Whether the iterations stop after one with residual r (laid out as the unknown).
-  bool update_criteria(const Eigen::VectorXd& r, bool& tolerance_met);
+  /// Whether the iterations stop after one with residual r and output u~ (laid out as the
+  /// unknown).
+  bool update_criteria(const Eigen::VectorXd& r, const Eigen::VectorXd& ut, bool& tolerance_met);
+  /// The criteria's progress text for the step's line (side by side: and the loads' residual).
+  std::string progress() const;
 
   std::string scheme_type_;
   Settings scheme_settings_;  ///< the coupled solver's: for the scheme's errors
@@ -171,6 +174,7 @@ class CoupledSolver {
   std::unique_ptr<ConvergenceCriterion> criterion_;
   /// Parallel schemes: the criterion of the load residual y~ - y (`load_criterion`), if set.
   std::unique_ptr<ConvergenceCriterion> load_criterion_;
+  double last_load_residual_ = 0.0;  ///< ||y~ - y|| of the last iteration (side by side)
   double divergence_factor_;
   int growth_iterations_;  ///< 0: off
   CouplingScheme::Backtracking backtracking_;

@@ -81,6 +81,32 @@ TEST(Convergence, LimitReachedIsSeenThroughCombinations) {
   EXPECT_FALSE(make("type: absolute_norm\ntolerance: 1")->limit_reached());
 }
 
+// preCICE's relative measure: the residual against the output it belongs to, no history.
+TEST(Convergence, ValueRelativeNormMeasuresTheResidualAgainstTheOutput) {
+  auto c = make("type: value_relative_norm\ntolerance: 1e-3");
+  c->initialize_step();
+  c->set_output(residual(100.0));
+  c->update(residual(0.2));
+  EXPECT_FALSE(c->is_satisfied());
+  c->set_output(residual(100.0));
+  c->update(residual(0.05));
+  EXPECT_TRUE(c->is_satisfied());
+  EXPECT_TRUE(c->tolerances().empty());  // no fixed line for a plot of ||r||
+  c->set_output(Eigen::VectorXd::Zero(4));
+  c->update(residual(1e-30));
+  EXPECT_FALSE(c->is_satisfied());  // any residual against a zero output
+  c->update(Eigen::VectorXd::Zero(4));
+  EXPECT_TRUE(c->is_satisfied());
+  // Combinations hand the output on.
+  auto combined = make(
+      "type: or\ncriteria:\n  - {type: value_relative_norm, tolerance: 1e-3}\n"
+      "  - {type: iteration_limit, maximum: 10}");
+  combined->initialize_step();
+  combined->set_output(residual(100.0));
+  combined->update(residual(0.05));
+  EXPECT_TRUE(combined->tolerance_met());
+}
+
 TEST(Convergence, RelativeNormWithZeroFirstResidualIsConverged) {
   auto c = make("type: relative_norm\ntolerance: 1e-6");
   c->initialize_step();
