@@ -31,7 +31,7 @@ class Iqni : public CoupledSolver {
       s.fail("scaling",
              "residual_sum changes the weights every iteration, which model '" + model_type_ +
                  "' cannot follow: give fixed weights (scaling: {displacement: ..., pressure: "
-                 "...}) or 'automatic', or use model 'ls'");
+                 "...}) or 'automatic'");
     if (mixing_ != 1.0 && !model_->fits_residuals())
       s.fail("mixing", "is defined for model 'ls' only (model '" + model_type_ +
                            "' approximates a Jacobian, not a least-squares fit of residuals)");

@@ -104,6 +104,7 @@ struct SideBySide {
 const SideBySide kSideBySide[] = {
     {"parallel_iqni_ls_q10", "type: iqni, omega: 0.05, model: {type: ls, q: 10}", 825},
     {"parallel_iqni_ls_q0", "type: iqni, omega: 0.05, model: {type: ls, q: 0}", 2468},
+    {"parallel_iqni_mvmf_q100", "type: iqni, omega: 0.05, model: {type: mvmf, q: 100}", 716},
     {"parallel_aitken", "type: aitken, omega_max: 0.05", 0},
 };
 class CouplingSideBySide : public ::testing::TestWithParam<SideBySide> {};

@@ -89,6 +89,17 @@ class MultiVector : public Model {
     current_ = StepColumns(filter_);
   }
 
+  /// New weights of the residuals (side by side, scaling residual_sum): the current step's
+  /// columns re-expressed, and J_prev (mv: exactly, J_prev D^-1; mvmf: each kept step's
+  /// columns re-expressed and its QR redone, as preCICE does, which changes its min-norm
+  /// update a little).
+  bool rescalable() const override { return true; }
+  void rescale(const Eigen::VectorXd& factors) override {
+    current_.rescale(factors);
+    if (has_reference_) r_ref_ = r_ref_.cwiseProduct(factors);
+    rescale_previous(factors);
+  }
+
   /// The current step's columns plus those of previous steps still held in J_prev.
   int columns() const override { return current_.size() + previous_columns(); }
 
@@ -110,6 +121,7 @@ class MultiVector : public Model {
   /// J_prev <- J_prev + (W - J_prev V) V^+ for a finished step's (non-empty) columns.
   virtual void keep(StepColumns step) = 0;
   virtual int previous_columns() const = 0;
+  virtual void rescale_previous(const Eigen::VectorXd& factors) = 0;
 
  private:
   ColumnFilter filter_;

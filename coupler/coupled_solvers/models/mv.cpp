@@ -32,6 +32,11 @@ class MultiVectorDense : public MultiVector {
 
   int previous_columns() const override { return columns_kept_; }
 
+  void rescale_previous(const Eigen::VectorXd& factors) override {
+    // J_prev maps weighted residual differences: D r in the new weights is r in the old.
+    if (jacobian_.size() > 0) jacobian_ = jacobian_ * factors.cwiseInverse().asDiagonal();
+  }
+
   void save_previous(State& state) const override {
     state.set("jacobian", jacobian_);
     state.set("columns_kept", double(columns_kept_));

@@ -27,6 +27,13 @@ class MultiVectorMatrixFree : public MultiVector {
     while (steps_.size() > std::size_t(reused_steps_)) steps_.pop_back();
   }
 
+  void rescale_previous(const Eigen::VectorXd& factors) override {
+    for (StepColumns& step : steps_) {
+      step.rescale(factors);
+      step.freeze();
+    }
+  }
+
   int previous_columns() const override {
     int total = 0;
     for (const StepColumns& step : steps_) total += step.size();
