@@ -281,14 +281,8 @@ void CoupledSolver::save_state(State& state) const {
 }
 
 void CoupledSolver::load_state(const State& state, bool own) {
-  const Eigen::MatrixXd& columns = state.group("predictor").matrix("history");
-  const Eigen::Index size = scheme_->unknown().size();
-  if (columns.rows() != size || columns.cols() == 0)
-    throw std::runtime_error(fmt::format(
-        "the saved coupled-solver state holds an unknown of {} values, this run's has {} "
-        "([{}]{}; a run saved by one coupling scheme continues with the same scheme)",
-        columns.rows(), size, x().describe(),
-        side_by_side() ? " and [" + y().describe() + "], scheme parallel" : ""));
+  const Eigen::MatrixXd columns =
+      predictor_history(state.group("predictor").matrix("history"), own);
   std::deque<Eigen::VectorXd> history;
   for (Eigen::Index i = 0; i < columns.cols(); ++i) history.push_back(columns.col(i));
   predictor_->restore(std::move(history));
@@ -297,6 +291,28 @@ void CoupledSolver::load_state(const State& state, bool own) {
   if (state.has("largest_first_residual"))
     largest_first_residual_ = state.scalar("largest_first_residual");
   if (own) load_own_state(state);
+}
+
+Eigen::MatrixXd CoupledSolver::predictor_history(const Eigen::MatrixXd& saved, bool own) const {
+  const Eigen::Index size = scheme_->unknown().size(), nx = x().size();
+  if (saved.rows() == size && saved.cols() > 0) return saved;
+  // A fresh coupled solver may continue another scheme's run: side by side after serial, the
+  // loads' history is the loads the first solver reports now (the predictor extrapolates
+  // them from there); serial after side by side, the displacement's part.
+  if (!own && saved.cols() > 0 && saved.rows() == nx && side_by_side()) {
+    Eigen::MatrixXd stacked(size, saved.cols());
+    stacked.topRows(nx) = saved;
+    stacked.bottomRows(size - nx).colwise() = y().data();
+    return stacked;
+  }
+  if (!own && saved.cols() > 0 && saved.rows() == nx + y().size() && !side_by_side())
+    return saved.topRows(nx);
+  throw std::runtime_error(fmt::format(
+      "the saved coupled-solver state holds an unknown of {} values, this run's has {} "
+      "([{}]{}; a run saved by one coupling scheme continues with the same scheme, or with "
+      "another after --fresh-coupling)",
+      saved.rows(), size, x().describe(),
+      side_by_side() ? " and [" + y().describe() + "], scheme parallel" : ""));
 }
 
 std::string CoupledSolver::divergence_advice() const {

@@ -161,6 +161,9 @@ class CoupledSolver {
   void check_divergence(const std::vector<double>& norms, int step, double time,
                         std::vector<std::string>& notes) const;
 
+  /// The saved predictor history laid out as this scheme's unknown (another scheme's, for a
+  /// fresh coupled solver: `own` false); throws when it cannot be.
+  Eigen::MatrixXd predictor_history(const Eigen::MatrixXd& saved, bool own) const;
   /// Whether the iterations stop after one with residual r and output u~ (laid out as the
   /// unknown).
   bool update_criteria(const Eigen::VectorXd& r, const Eigen::VectorXd& ut, bool& tolerance_met);

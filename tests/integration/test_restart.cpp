@@ -136,6 +136,18 @@ TEST_F(Restart, ASideBySideRunContinuesAsTheUninterruptedOne) {
   EXPECT_NE(serial.exit_code, 0);
   EXPECT_NE(serial.output.find("continues with the same scheme"), std::string::npos)
       << serial.output;
+  // A fresh coupled solver may: the serial one takes the displacement's history.
+  const CommandResult fresh =
+      run_cocopp("run --restart --fresh-coupling " + (dir_ / "case.yaml").string());
+  EXPECT_EQ(fresh.exit_code, 0) << fresh.output;
+  EXPECT_NE(fresh.output.find("step 120 / 120"), std::string::npos) << fresh.output;
+  // And side by side after serial (the bench's start_from_state): the loads' history starts
+  // at what the flow reports after its restart.
+  write_text(dir_ / "case.yaml", flow_structure_case(130, 0, true));
+  const CommandResult back =
+      run_cocopp("run --restart --fresh-coupling " + (dir_ / "case.yaml").string());
+  EXPECT_EQ(back.exit_code, 0) << back.output;
+  EXPECT_NE(back.output.find("step 130 / 130"), std::string::npos) << back.output;
 }
 
 // A run killed (SIGKILL, no chance to write anything) somewhere after step 57, with the state
