@@ -33,9 +33,7 @@ std::vector<std::string> count_repeats(const std::vector<std::string>& notes) {
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
-}  // namespace
 
-namespace {
 /// The `scheme` key: one of the registered coupling schemes.
 std::string read_scheme(const Settings& settings) {
   const auto scheme = settings.get<std::string>("scheme", "serial");
@@ -53,7 +51,8 @@ std::unique_ptr<ConvergenceCriterion> read_load_criterion(const Settings& settin
       settings.fail("scheme",
                     "parallel needs a load_criterion too: side by side the displacement residual "
                     "S(y) - x can vanish while y is not yet F(x) (add e.g. load_criterion: {type: "
-                    "relative_norm, tolerance: 1.0e-6, reference: largest})");
+                    "value_relative_norm, tolerance: 1.0e-8}, and measure the displacement so "
+                    "too: docs/coupling.md, \"Schemes\")");
     return nullptr;
   }
   if (scheme != "parallel")
