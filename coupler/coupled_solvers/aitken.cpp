@@ -4,7 +4,7 @@
 // The factor is updated with every new residual, also the one that ends a step, as CoCoNuT
 // does; the next step starts from that factor, capped at omega_max. With `scheme: parallel`
 // the residual is the stacked (x~ - x, y~ - y), and the factor's dot products weigh each
-// variable (`scaling`, automatic unless set), else the loads' residual alone would set it.
+// field (`scaling`, residual_sum unless set), else the loads' residual alone would set it.
 #include <fmt/format.h>
 
 #include <algorithm>

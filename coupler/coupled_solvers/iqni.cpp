@@ -1,7 +1,7 @@
 // iqni: interface quasi-Newton with an approximation of the inverse Jacobian (IQN-I), the
 // Jacobian model chosen by `model` (ls = IQN-ILS). x^(k+1) = x~^k + W c, where the model fits
 // V c ~ -r^k; relaxation with omega until the model has information. With `scheme: parallel`
-// x is the stacked unknown (x, y) and the fit weighs each variable (`scaling`, automatic
+// x is the stacked unknown (x, y) and the fit weighs each field (`scaling`, residual_sum
 // unless set): unweighted, a pressure's residual in Pa would drown the displacement's in m.
 //
 // `mixing` (beta, model ls only) is Anderson acceleration's mixing parameter (Walker and Ni,
@@ -27,11 +27,6 @@ class Iqni : public CoupledSolver {
         model_type_(s.child("model").required<std::string>("type")),
         model_(ModelRegistry::instance().create(s.child("model"))),
         scaling_(s, side_by_side()) {
-    if (scaling_.changing() && !model_->rescalable())
-      s.fail("scaling",
-             "residual_sum changes the weights every iteration, which model '" + model_type_ +
-                 "' cannot follow: give fixed weights (scaling: {displacement: ..., pressure: "
-                 "...}) or 'automatic'");
     if (mixing_ != 1.0 && !model_->fits_residuals())
       s.fail("mixing", "is defined for model 'ls' only (model '" + model_type_ +
                            "' approximates a Jacobian, not a least-squares fit of residuals)");

@@ -31,10 +31,14 @@ VariableScaling::VariableScaling(const Settings& s, bool residual_sum_by_default
 void VariableScaling::bind(const std::vector<const Interface*>& layouts) {
   std::set<std::string> present;
   layouts_.clear();
+  Eigen::Index offset = 0;
   for (const Interface* layout : layouts) {
-    layouts_.push_back({layout->blocks(), Eigen::VectorXd::Ones(layout->size())});
+    layouts_.push_back({layout->blocks(), Eigen::VectorXd::Ones(layout->size()), offset});
+    offset += layout->size();
     for (const auto& block : layout->blocks()) present.insert(block.variable);
   }
+  field_sums_.assign(layouts_.size(), 0.0);
+  field_weights_.assign(layouts_.size(), 1.0);
   const std::vector<std::string> names(present.begin(), present.end());
   for (const auto& [variable, factor] : fixed_)
     if (!present.count(variable))
@@ -47,7 +51,6 @@ void VariableScaling::bind(const std::vector<const Interface*>& layouts) {
 
 void VariableScaling::refresh_weights() {
   if (residual_sum_) {  // one weight per field
-    field_weights_.resize(layouts_.size(), 1.0);
     for (std::size_t i = 0; i < layouts_.size(); ++i)
       layouts_[i].weights.setConstant(field_weights_[i]);
     return;
@@ -94,21 +97,14 @@ Eigen::VectorXd VariableScaling::remove(std::size_t index, const Eigen::VectorXd
 void VariableScaling::accumulate(const Eigen::VectorXd& r) {
   const double total = r.norm();
   if (!(total > 0.0) || !std::isfinite(total)) return;
-  field_sums_.resize(layouts_.size(), 0.0);
-  Eigen::Index offset = 0;
-  for (std::size_t i = 0; i < layouts_.size(); ++i) {
-    const Eigen::Index size = layouts_[i].weights.size();
-    field_sums_[i] += r.segment(offset, size).norm() / total;
-    offset += size;
-  }
+  for (std::size_t i = 0; i < layouts_.size(); ++i)
+    field_sums_[i] += segment_of(r, layouts_[i]).norm() / total;
 }
 
 Eigen::VectorXd VariableScaling::refresh() {
   // A field whose sum is still zero keeps its weight (1 until it has a residual). Weights
   // within 10 % of those in use stay: re-expressing the models' columns costs a QR
   // factorization, and any fixed weights are as consistent as new ones.
-  field_weights_.resize(layouts_.size(), 1.0);
-  field_sums_.resize(layouts_.size(), 0.0);
   std::vector<double> candidate = field_weights_;
   bool changed = false;
   for (std::size_t i = 0; i < layouts_.size(); ++i) {
@@ -117,42 +113,30 @@ Eigen::VectorXd VariableScaling::refresh() {
     if (std::abs(candidate[i] / field_weights_[i] - 1.0) > 0.1) changed = true;
   }
   if (!changed) return {};
-  Eigen::Index size = 0;
-  for (const Layout& layout : layouts_) size += layout.weights.size();
-  Eigen::VectorXd factors(size);
-  Eigen::Index offset = 0;
-  for (std::size_t i = 0; i < layouts_.size(); ++i) {
-    const Eigen::Index n = layouts_[i].weights.size();
-    factors.segment(offset, n).setConstant(candidate[i] / field_weights_[i]);
-    offset += n;
-  }
+  const Eigen::VectorXd old = stacked_weights();
   field_weights_ = std::move(candidate);
   refresh_weights();
-  return factors;
+  return stacked_weights().cwiseQuotient(old);
 }
 
 Eigen::VectorXd VariableScaling::apply_all(const Eigen::VectorXd& values) {
   if (!enabled()) return values;
-  Eigen::VectorXd weighted(values.size());
-  Eigen::Index offset = 0;
-  for (std::size_t i = 0; i < layouts_.size(); ++i) {
-    const Eigen::Index size = layouts_[i].weights.size();
-    weighted.segment(offset, size) = apply(i, values.segment(offset, size));
-    offset += size;
-  }
-  return weighted;
+  if (automatic_)
+    for (const Layout& layout : layouts_) fix_automatic_weights(layout, segment_of(values, layout));
+  return values.cwiseProduct(stacked_weights());
 }
 
 Eigen::VectorXd VariableScaling::remove_all(const Eigen::VectorXd& weighted) const {
   if (!enabled()) return weighted;
-  Eigen::VectorXd values(weighted.size());
-  Eigen::Index offset = 0;
-  for (std::size_t i = 0; i < layouts_.size(); ++i) {
-    const Eigen::Index size = layouts_[i].weights.size();
-    values.segment(offset, size) = remove(i, weighted.segment(offset, size));
-    offset += size;
-  }
-  return values;
+  return weighted.cwiseQuotient(stacked_weights());
+}
+
+Eigen::VectorXd VariableScaling::stacked_weights() const {
+  Eigen::Index size = 0;
+  for (const Layout& layout : layouts_) size += layout.weights.size();
+  Eigen::VectorXd stacked(size);
+  for (const Layout& layout : layouts_) segment_of(stacked, layout) = layout.weights;
+  return stacked;
 }
 
 void VariableScaling::save_state(State& state) const {
@@ -168,8 +152,6 @@ void VariableScaling::save_state(State& state) const {
 
 void VariableScaling::load_state(const State& state) {
   if (residual_sum_) {
-    field_sums_.assign(layouts_.size(), 0.0);
-    field_weights_.assign(layouts_.size(), 1.0);
     for (std::size_t i = 0; i < layouts_.size(); ++i)
       if (state.has_group("sums") && state.group("sums").has(std::to_string(i))) {
         field_sums_[i] = state.group("sums").scalar(std::to_string(i));

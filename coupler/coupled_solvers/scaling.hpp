@@ -90,9 +90,17 @@ class VariableScaling {
   struct Layout {
     std::vector<Interface::Block> blocks;
     Eigen::VectorXd weights;  ///< one per value; rebuilt when weights_ change
+    Eigen::Index offset = 0;  ///< where its values start in a stacked vector (apply_all)
   };
+  /// The part of a stacked vector (laid out as every bound interface in turn) for `layout`.
+  template <class Vector>
+  static auto segment_of(Vector& stacked, const Layout& layout) {
+    return stacked.segment(layout.offset, layout.weights.size());
+  }
   void fix_automatic_weights(const Layout& layout, const Eigen::VectorXd& values);
   void refresh_weights();
+  /// Every bound interface's weights one after the other.
+  Eigen::VectorXd stacked_weights() const;
 
   bool automatic_ = false;
   bool residual_sum_ = false;

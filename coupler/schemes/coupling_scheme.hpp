@@ -68,8 +68,6 @@ class CouplingScheme {
   Eigen::VectorXd loads_part(const Eigen::VectorXd& r) const {
     return r.tail(r.size() - x_.size());
   }
-  /// Whether the solvers of an iteration run side by side.
-  virtual bool side_by_side() const = 0;
   void set_loads_update(LoadsUpdate update) { loads_update_ = std::move(update); }
 
   /// Advance both solvers to `step` (time = step * delta_t); the step's solver times start at 0.

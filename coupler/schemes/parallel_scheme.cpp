@@ -31,7 +31,6 @@ class ParallelScheme : public CouplingScheme {
     x_.set_data(u.head(x_.size()));
     y_.set_data(u.tail(y_.size()));
   }
-  bool side_by_side() const override { return true; }
 
   Eigen::VectorXd evaluate(const Eigen::VectorXd& u, int iteration) override {
     set_unknown(u);

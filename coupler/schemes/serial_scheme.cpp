@@ -13,7 +13,6 @@ class SerialScheme : public CouplingScheme {
   std::vector<const Interface*> unknown_layouts() const override { return {&x_}; }
   Eigen::VectorXd unknown() const override { return x_.data(); }
   void set_unknown(const Eigen::VectorXd& u) override { x_.set_data(u); }
-  bool side_by_side() const override { return false; }
 
   Eigen::VectorXd evaluate(const Eigen::VectorXd& x, int iteration) override {
     x_.set_data(x);

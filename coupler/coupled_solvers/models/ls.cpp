@@ -27,7 +27,6 @@ class LeastSquares : public Model {
 
   bool is_ready() const override { return !columns_.empty(); }
 
-  bool rescalable() const override { return true; }
   void rescale(const Eigen::VectorXd& factors) override {
     columns_.rescale(factors);
     if (has_reference_) r_ref_ = r_ref_.cwiseProduct(factors);

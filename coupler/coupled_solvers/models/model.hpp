@@ -36,11 +36,9 @@ class Model {
   /// so that a product of two such models can be formed in the small space of their columns
   /// (ibqn); nullptr for any other model.
   virtual const SecantColumns* least_squares_columns() const { return nullptr; }
-  /// Whether rescale() is supported: else the weights of its residuals must stay fixed.
-  virtual bool rescalable() const { return false; }
   /// The weights of the residuals it was given changed by `factors` (new over old, per
-  /// value): express what it holds in the new ones (if rescalable()).
-  virtual void rescale(const Eigen::VectorXd& /*factors*/) {}
+  /// value): express what it holds in the new ones (scaling residual_sum).
+  virtual void rescale(const Eigen::VectorXd& factors) = 0;
   /// Called when the time step converged: keep this step's information for reuse.
   virtual void finalize_step() = 0;
   /// Number of secant columns currently in use (for reports and tests).

@@ -93,7 +93,6 @@ class MultiVector : public Model {
   /// columns re-expressed, and J_prev (mv: exactly, J_prev D^-1; mvmf: each kept step's
   /// columns re-expressed and its QR redone, as preCICE does, which changes its min-norm
   /// update a little).
-  bool rescalable() const override { return true; }
   void rescale(const Eigen::VectorXd& factors) override {
     current_.rescale(factors);
     if (has_reference_) r_ref_ = r_ref_.cwiseProduct(factors);
