@@ -86,6 +86,18 @@ const MappingQuality& Mapper::quality() const {
   return consistent_ ? consistent_->quality() : conservative_->quality();
 }
 
+Eigen::VectorXd Mapper::target_distances() const {
+  if (!initialized_) throw std::logic_error("Mapper::target_distances called before initialize");
+  if (!consistent_)
+    throw std::invalid_argument(
+        "a mapper that maps everything conservatively measures no distance from each target "
+        "point to the source: list the conservative variables (conservative: [force])");
+  RowMatrix distances = consistent_->target_distances();
+  for (auto it = target_side_.rbegin(); it != target_side_.rend(); ++it)
+    distances = (*it)->backward(distances);
+  return distances.col(0);
+}
+
 RowMatrix Mapper::map(const RowMatrix& source_values) const {
   return map_with(source_values, all_conservative_);
 }

@@ -37,6 +37,11 @@ class Mapper {
 
   /// The quality of the consistent mapping (of the conservative one if there is no other).
   const MappingQuality& quality() const;
+  /// Per target point, the distance to the source stencil that the consistent mapping uses
+  /// (infinite where the target is unmatched), measured where the interpolator works (after
+  /// the transformers) and brought back to the target points (averaged over their copies).
+  /// Throws std::invalid_argument for a mapper that maps everything conservatively.
+  Eigen::VectorXd target_distances() const;
   bool initialized() const { return initialized_; }
 
  private:

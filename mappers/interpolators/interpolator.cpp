@@ -103,6 +103,7 @@ void Interpolator::initialize(const Coordinates& source, const Coordinates& targ
   check_boxes_overlap(source_points, target_points);
 
   quality_ = MappingQuality{};
+  target_distances_.resize(0);
   matrix_ = Eigen::SparseMatrix<double, Eigen::RowMajor>();
   build(source_points, target_points);
   treat_unmatched(source_points, target_points);
@@ -182,6 +183,9 @@ void Interpolator::treat_unmatched(const Eigen::MatrixXd& /*source*/,
     unmatched_nearest_sources_.push_back(s);
   }
   quality_.unmatched = static_cast<int>(unmatched_targets_.size());
+  if (target_distances_.size() == target.rows())
+    for (const Eigen::Index t : unmatched_targets_)
+      target_distances_(t) = std::numeric_limits<double>::infinity();
   if (unmatched_ != Unmatched::kError || unmatched_targets_.empty()) return;
   const Eigen::Index first = unmatched_targets_.front();
   query = target.row(first);
@@ -195,6 +199,7 @@ void Interpolator::treat_unmatched(const Eigen::MatrixXd& /*source*/,
 }
 
 void Interpolator::record_distances(const Eigen::VectorXd& distances) {
+  target_distances_ = distances;
   if (distances.size() == 0) return;
   quality_.min_distance = distances.minCoeff();
   quality_.mean_distance = distances.mean();

@@ -50,6 +50,10 @@ class Interpolator {
   RowMatrix map_transpose(const RowMatrix& target_values) const;
 
   const MappingQuality& quality() const { return quality_; }
+  /// Per target point, the distance to its source stencil (infinite for an unmatched target):
+  /// how well the source covers each target (a solver group gives each point to the member
+  /// that covers it best).
+  const Eigen::VectorXd& target_distances() const { return target_distances_; }
   Eigen::Index source_size() const { return source_size_; }
   Eigen::Index target_size() const { return target_size_; }
 
@@ -73,6 +77,7 @@ class Interpolator {
   MappingQuality quality_;
 
  private:
+  Eigen::VectorXd target_distances_;
   Eigen::MatrixXd select_directions(const Coordinates& points) const;
   std::string direction_names() const;
   void check_not_empty(const Coordinates& points, const std::string& name) const;

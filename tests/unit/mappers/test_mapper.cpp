@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
+#include <cmath>
 #include <string>
+#include <vector>
 
 #include "core/case/settings.hpp"
 #include "mappers/mapper.hpp"
@@ -105,6 +107,51 @@ TEST(Mapper, CaseErrorsOfTheConservativeChoiceSayWhatToChange) {
       "transformers: [{type: axisymmetric_2d_to_3d, direction_axial: y, "
       "direction_radial: x, angle: 5.0}]\n",
       "only one that keeps each point one point");
+}
+
+/// Points along z at the given positions.
+Coordinates on_axis(const std::vector<double>& z) {
+  Coordinates points = Coordinates::Zero(static_cast<Eigen::Index>(z.size()), 3);
+  for (std::size_t i = 0; i < z.size(); ++i) points(static_cast<Eigen::Index>(i), 2) = z[i];
+  return points;
+}
+
+// What a solver group decides ownership by: 0 where the target lies within the source's
+// stencils, the distance to the nearest source point beyond its ends, infinite where the
+// target is unmatched; through a depth transformer, per real target point.
+TEST(Mapper, TargetDistancesSayHowFarEachTargetIsFromTheSource) {
+  Mapper linear{Settings::load_string("{type: linear, directions: [z]}", "test")};
+  linear.initialize(on_axis({0.0, 1.0, 2.0}), on_axis({0.5, 2.0, 2.25, 3.0, -1.0}));
+  const Eigen::VectorXd d = linear.target_distances();
+  ASSERT_EQ(d.size(), 5);
+  EXPECT_DOUBLE_EQ(d(0), 0.0);
+  EXPECT_DOUBLE_EQ(d(1), 0.0);
+  EXPECT_DOUBLE_EQ(d(2), 0.25);
+  EXPECT_DOUBLE_EQ(d(3), 1.0);
+  EXPECT_DOUBLE_EQ(d(4), 1.0);
+
+  Mapper limited{Settings::load_string(
+      "{type: nearest, directions: [z], max_distance: 0.5, unmatched: zero}", "test")};
+  limited.initialize(on_axis({0.0, 1.0}), on_axis({1.25, 2.0}));
+  EXPECT_DOUBLE_EQ(limited.target_distances()(0), 0.25);
+  EXPECT_TRUE(std::isinf(limited.target_distances()(1)));
+
+  Mapper conservative{Settings::load_string("{type: nearest, conservative: true}", "test")};
+  conservative.initialize(on_axis({0.0, 1.0}), on_axis({0.0, 1.0}));
+  EXPECT_THROW(conservative.target_distances(), std::invalid_argument);
+}
+
+TEST(Mapper, TargetDistancesComeBackThroughATargetSideTransformer) {
+  // A 2D target seen as two depth layers of a 3D source: the distance per real target point.
+  Mapper mapper{Settings::load_string(
+      "{type: nearest, transformers: [{type: depth_3d_to_2d, direction_depth: x, "
+      "coordinates: [-1.0, 1.0]}]}",
+      "test")};
+  mapper.initialize(on_axis({0.0, 1.0}), on_axis({0.0, 3.0}));
+  const Eigen::VectorXd d = mapper.target_distances();
+  ASSERT_EQ(d.size(), 2);
+  EXPECT_NEAR(d(0), 1.0, 1e-12);             // the layers at x = -1, 1 lie 1 from (0, 0, 0)
+  EXPECT_NEAR(d(1), std::sqrt(5.0), 1e-12);  // (+-1, 0, 3) from (0, 0, 1)
 }
 
 }  // namespace
