@@ -52,6 +52,15 @@ class SolverWrapper {
   /// `output` what it takes. Others keep their own interfaces.
   virtual bool adopts_interfaces() const { return false; }
   virtual void adopt_interfaces(const Interface& /*input*/, const Interface& /*output*/) {}
+  /// After adopt_interfaces(): for each point of the adopted output model part `part`, how far
+  /// it lies from what this solver covers (0 inside its mesh; infinite where it gives nothing).
+  /// A `group` gives each point to the member that covers it. Wrappers that do not adopt
+  /// interfaces cover everything they give.
+  virtual Eigen::VectorXd output_distances(const std::string& part) const {
+    for (const auto& block : output_interface().blocks())
+      if (block.model_part == part) return Eigen::VectorXd::Zero(block.points);
+    return {};
+  }
 
   /// From now on initialize_step(), finalize_step() and output_step() may return as soon as
   /// the request is on its way; the solver's answer (or its error, named after that request

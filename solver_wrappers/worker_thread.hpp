@@ -1,6 +1,7 @@
 #pragma once
 // WorkerThread: one thread that lives as long as its owner and runs one task at a time, so
-// that a parallel scheme can run a solver beside the main thread. A long-lived thread, not one
+// that a parallel scheme can run a solver beside the main thread (and a solver group its
+// members side by side). A long-lived thread, not one
 // per task: a child process started from a thread (ccx, started by the calculix wrapper every
 // coupling iteration) is killed when that thread ends (PR_SET_PDEATHSIG, child_process.hpp).
 #include <condition_variable>

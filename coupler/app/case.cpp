@@ -45,30 +45,40 @@ RunSettings read_run_settings(const Settings& s, const std::filesystem::path& ca
   return run;
 }
 
-/// The working directory a solver wrapper's settings give (a mapped wrapper's: its inner
-/// solver's), resolved against the case directory; and the settings that name it.
-std::optional<std::pair<std::filesystem::path, Settings>> working_directory_of(
-    const Settings& wrapper) {
+/// The working directories a solver wrapper's settings give (a mapped wrapper's: its inner
+/// solver's; a group's: its members'), resolved against the case directory; with the settings
+/// that name each.
+void collect_working_directories(const Settings& wrapper,
+                                 std::vector<std::pair<std::filesystem::path, Settings>>& out) {
   if (wrapper.has("working_directory"))
-    return std::make_pair(
+    out.emplace_back(
         // (a trailing "/" for every path, so that "flow" and "flow/" compare equal)
         (wrapper.base_directory() / wrapper.required<std::string>("working_directory") / "")
             .lexically_normal(),
         wrapper);
-  if (wrapper.has("solver_wrapper")) return working_directory_of(wrapper.child("solver_wrapper"));
-  return std::nullopt;
+  if (wrapper.has("solver_wrapper"))
+    collect_working_directories(wrapper.child("solver_wrapper"), out);
+  if (wrapper.has("solver_wrappers") && wrapper.node()["solver_wrappers"].IsSequence())
+    for (const auto& member : wrapper.list("solver_wrappers"))
+      collect_working_directories(member, out);
 }
 
 /// Two solvers in one working directory would share its channel (the pipes or message files)
 /// and their logs: a case error, found before anything starts.
-void check_own_working_directories(const std::vector<Settings>& wrappers) {
-  const auto first = working_directory_of(wrappers[0]);
-  const auto second = working_directory_of(wrappers[1]);
-  if (!first || !second || first->first != second->first) return;
-  second->second.fail("working_directory",
-                      "is also the first solver's (" + first->second.where("working_directory") +
-                          "): give each solver its own working directory, which holds its "
-                          "channel to the coupler (pipes or message files) and its log");
+std::vector<std::filesystem::path> own_working_directories(const std::vector<Settings>& wrappers) {
+  std::vector<std::pair<std::filesystem::path, Settings>> all;
+  for (const auto& wrapper : wrappers) collect_working_directories(wrapper, all);
+  std::vector<std::filesystem::path> directories;
+  for (std::size_t j = 0; j < all.size(); ++j) {
+    for (std::size_t i = 0; i < j; ++i)
+      if (all[i].first == all[j].first)
+        all[j].second.fail("working_directory",
+                           "is also another solver's (" + all[i].second.where("working_directory") +
+                               "): give each solver its own working directory, which holds its "
+                               "channel to the coupler (pipes or message files) and its log");
+    directories.push_back(all[j].first);
+  }
+  return directories;
 }
 
 /// Reads the state a restarted run continues from and moves the run's start to its step; the
@@ -133,12 +143,10 @@ Case load_case(const std::filesystem::path& file, bool restart) {
   if (wrappers.size() != 2)
     root.fail("solver_wrappers",
               "needs exactly two solver wrappers (the first takes displacement and gives loads, "
-              "the second takes loads and gives displacement), got " +
+              "the second takes loads and gives displacement; several solvers on one side: a "
+              "`group`), got " +
                   std::to_string(wrappers.size()));
-  check_own_working_directories(wrappers);
-  for (const auto& w : wrappers)
-    if (const auto directory = working_directory_of(w))
-      c.working_directories.push_back(directory->first);
+  c.working_directories = own_working_directories(wrappers);
   for (const auto& w : wrappers)
     c.solvers.push_back(SolverWrapperRegistry::instance().create(w, c.run));
   if (c.solvers[0]->name() == c.solvers[1]->name())

@@ -8,7 +8,7 @@
 #include <exception>
 
 #include "coupler/schemes/coupling_scheme.hpp"
-#include "coupler/schemes/worker_thread.hpp"
+#include "solver_wrappers/worker_thread.hpp"
 
 namespace cocopp {
 namespace {

@@ -19,6 +19,10 @@
 // solver's nodes so that the output mapper gives them back exactly (ExactRoundTrip: a
 // structure driven by the wall position then balances the forces at the coupling's fixed point).
 //
+// A placed frame: `frame_origin: [x, y, z]` says where the inner solver's origin lies in the
+// other solver's coordinates (one input file for several bodies, each placed by its own
+// wrapper: a group of walls along a tube).
+//
 // A moving frame: `frame_velocity: [vx, vy, vz]` says that the inner solver describes its
 // body in a frame that moves at this velocity (in the inner solver's coordinates, before the
 // transformers) relative to the other solver's. Its points are then at their coordinates plus
@@ -65,7 +69,7 @@ class MappedSolverWrapper : public SolverWrapper {
       settings.fail("input_mapper", "give a mapper, or a list of one per input model part pair");
     for (const auto& input : input_settings_) Mapper{input};
     Mapper{output_settings_};
-    read_frame_velocity(settings);
+    read_frame(settings);
   }
 
   const std::string& name() const override { return name_; }
@@ -84,9 +88,26 @@ class MappedSolverWrapper : public SolverWrapper {
   void adopt_interfaces(const Interface& input, const Interface& output) override {
     input_ = input;
     output_ = output;
+    builds_ = 0;  // adopted again (a group gives it only its own points): a fresh count
+    build_seconds_ = 0.0;
     pair_model_parts();
     build_mappers();
     map_output(inner_->output_interface());  // the initial output, as seen by the coupler
+  }
+
+  Eigen::VectorXd output_distances(const std::string& part) const override {
+    for (const auto& pair : output_pairs_)
+      if (pair.outer == part) {
+        try {
+          return pair.mapper->target_distances();
+        } catch (const std::invalid_argument& e) {
+          throw std::runtime_error(fmt::format(
+              "mapped solver '{}': which points of '{}' it covers is measured by its output "
+              "mapper, and {}",
+              name_, part, e.what()));
+        }
+      }
+    return SolverWrapper::output_distances(part);
   }
 
   const Interface& input_interface() const override { return input_; }
@@ -314,7 +335,7 @@ class MappedSolverWrapper : public SolverWrapper {
     const auto rows = static_cast<Eigen::Index>(pair.back_rows.size());
     std::vector<bool> held(pair.back_rows.size(), false);
     RowMatrix base = RowMatrix::Zero(rows, 3);
-    base.rowwise() += frame_offset();
+    base.rowwise() += frame_motion();
     for (Eigen::Index k = 0; reports && k < rows; ++k) {
       held[static_cast<std::size_t>(k)] = inner_output.values(nodes, "driven")(k, 0) == 0.0;
       if (held[static_cast<std::size_t>(k)])
@@ -345,20 +366,24 @@ class MappedSolverWrapper : public SolverWrapper {
             name_, to_part, variable, from_part, fmt::join(given, ", ")));
   }
 
-  void read_frame_velocity(const Settings& settings) {
-    if (!settings.has("frame_velocity")) return;
-    const auto velocity = settings.get<std::vector<double>>("frame_velocity", {});
-    if (velocity.size() != 3)
-      settings.fail("frame_velocity",
-                    fmt::format("give three components [vx, vy, vz], not {}", velocity.size()));
-    frame_velocity_ = Eigen::RowVector3d(velocity[0], velocity[1], velocity[2]);
+  void read_frame(const Settings& settings) {
+    frame_origin_ = read_vector(settings, "frame_origin");
+    frame_velocity_ = read_vector(settings, "frame_velocity");
     if (!frame_velocity_.isZero() && rebuild_ == "never")
       settings.fail("frame_velocity",
                     "a moving frame needs mappings rebuilt as it moves: add 'rebuild: time_step'");
   }
 
-  /// How far the inner solver's frame has moved by now.
-  Eigen::RowVector3d frame_offset() const { return frame_velocity_ * time_; }
+  static Eigen::RowVector3d read_vector(const Settings& settings, const std::string& key) {
+    if (!settings.has(key)) return Eigen::RowVector3d::Zero();
+    const auto vector = settings.get<std::vector<double>>(key, {});
+    if (vector.size() != 3)
+      settings.fail(key, fmt::format("give three components [x, y, z], not {}", vector.size()));
+    return {vector[0], vector[1], vector[2]};
+  }
+
+  /// How far the inner solver's frame has moved by now (from frame_origin).
+  Eigen::RowVector3d frame_motion() const { return frame_velocity_ * time_; }
 
   static bool has_displacement(const Interface& interface, const std::string& part) {
     const auto variables = variables_of(interface, part);
@@ -391,7 +416,7 @@ class MappedSolverWrapper : public SolverWrapper {
     if (!displaced && pair && pair->follow_output)
       points += pair->follow_output->map(
           inner_->output_interface().values(pair->follow_part, "displacement"));
-    if (inner) points.rowwise() += frame_offset();
+    if (inner) points.rowwise() += frame_origin_ + frame_motion();
     return points;
   }
 
@@ -408,7 +433,7 @@ class MappedSolverWrapper : public SolverWrapper {
           frame_velocity_.isZero()
               ? std::string()
               : fmt::format(", {}'s frame has moved by ({:g}, {:g}, {:g})", inner_->name(),
-                            frame_offset()(0), frame_offset()(1), frame_offset()(2));
+                            frame_motion()(0), frame_motion()(1), frame_motion()(2));
       throw std::runtime_error(fmt::format(
           "mapped solver '{}': the mappers cannot be built on the positions at time {:g}{}: "
           "{}{}",
@@ -464,7 +489,7 @@ class MappedSolverWrapper : public SolverWrapper {
       for (const auto& variable : variables_of(output_, pair.outer)) {
         RowMatrix values = inner_output.values(pair.inner, variable);
         if (variable == "displacement" && values.cols() == 3)
-          values.rowwise() += frame_offset();  // the other solver sees the frame's motion
+          values.rowwise() += frame_motion();  // the other solver sees the frame's motion
         output_.values(pair.outer, variable) = pair.mapper->map(values, variable);
       }
   }
@@ -480,6 +505,7 @@ class MappedSolverWrapper : public SolverWrapper {
   std::vector<std::string> exact_variables_;
   std::string exact_where_;
   double time_;  ///< of the time step being solved
+  Eigen::RowVector3d frame_origin_ = Eigen::RowVector3d::Zero();
   Eigen::RowVector3d frame_velocity_ = Eigen::RowVector3d::Zero();
   double plain_round_trip_ = 0.0, exact_round_trip_ = 0.0;  ///< largest misses (run)
   double build_seconds_ = 0.0, map_seconds_ = 0.0;          ///< for the line at the end of the run

@@ -339,7 +339,7 @@ TEST(CocoppCheck, NumbersThatWouldBreakTheRunAndASharedWorkingDirectory) {
                "    working_directory: structure\n    timeout: 1.0e+10\n",
                "'solver_wrappers[1].timeout': must be in (0, 10000000], got 10000000000");
   expect_error("    working_directory: structure\n", "    working_directory: flow/\n",
-               "'solver_wrappers[1].working_directory': is also the first solver's");
+               "'solver_wrappers[1].working_directory': is also another solver's");
   fs::remove_all(dir);
 }
 
