@@ -25,6 +25,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -112,8 +113,11 @@ class GroupSolverWrapper : public SolverWrapper {
     output_ = output;
     for (auto& member : members_) member->adopt_interfaces(input_, output_);
     assign_points();
-    for (std::size_t k = 0; k < members_.size(); ++k)
+    member_inputs_.clear();
+    for (std::size_t k = 0; k < members_.size(); ++k) {
       members_[k]->adopt_interfaces(input_, owned_output(k));
+      member_inputs_.push_back(members_[k]->input_interface());
+    }
     gather_output();
   }
 
@@ -121,6 +125,10 @@ class GroupSolverWrapper : public SolverWrapper {
   const Interface& output_interface() const override { return output_; }
   Eigen::VectorXd output_distances(const std::string& part) const override {
     Eigen::VectorXd distances;
+    const auto& parts = output_.parts();
+    if (std::none_of(parts.begin(), parts.end(),
+                     [&](const Interface::Part& p) { return p.model_part->name == part; }))
+      return distances;
     for (std::size_t k = 0; k < members_.size(); ++k) {
       const Eigen::VectorXd own = members_[k]->output_distances(part);
       const std::vector<Eigen::Index>& rows = owned_rows_[k].at(part_index(part));
@@ -139,9 +147,10 @@ class GroupSolverWrapper : public SolverWrapper {
 
   const Interface& solve(const Interface& input) override {
     input_.set_data(input.data());
+    for (std::size_t k = 0; k < members_.size(); ++k) copy_blocks(input_, member_inputs_[k]);
     side_by_side([&](std::size_t k) {
       const auto start = std::chrono::steady_clock::now();
-      members_[k]->solve(input_);
+      members_[k]->solve(member_inputs_[k]);
       solve_seconds_[k] +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     });
@@ -235,17 +244,23 @@ class GroupSolverWrapper : public SolverWrapper {
     for (std::size_t j = 0; j < parts.size(); ++j) {
       const ModelPart& part = *parts[j].model_part;
       std::vector<Eigen::VectorXd> distances;
-      for (const auto& member : members_) distances.push_back(member->output_distances(part.name));
+      for (const auto& member : members_) {
+        Eigen::VectorXd own = member->output_distances(part.name);
+        if (own.size() == 0)  // a part the member does not map (`model_parts`)
+          own = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(part.size()),
+                                          std::numeric_limits<double>::infinity());
+        distances.push_back(std::move(own));
+      }
       for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(part.size()); ++i)
         owned_rows_[owner_of(part, i, distances)][j].push_back(i);
     }
     for (std::size_t k = 0; k < members_.size(); ++k)
       for (std::size_t j = 0; j < parts.size(); ++j)
-        if (owned_rows_[k][j].empty())
+        if (owned_rows_[k][j].empty() && maps_part(k, parts[j].model_part->name))
           throw std::runtime_error(fmt::format(
               "group '{}': member '{}' covers no point of model part '{}' better than another "
               "member: check where its mesh lies (its mapped wrapper's frame_origin, the "
-              "transformers); every member takes a share of every model part",
+              "transformers), or leave the part to the others (the member's model_parts)",
               name_, members_[k]->name(), parts[j].model_part->name));
   }
 
@@ -259,7 +274,8 @@ class GroupSolverWrapper : public SolverWrapper {
     if (!std::isfinite(nearest))
       throw std::runtime_error(fmt::format(
           "group '{}': point {} ({:g}, {:g}, {:g}) of model part '{}' lies outside every "
-          "member (each member's output mapper leaves it unmatched): every point of the other "
+          "member (each member's output mapper leaves it unmatched, or does not map the part: "
+          "model_parts): every point of the other "
           "side's interface needs a member that covers it",
           name_, part.ids[static_cast<std::size_t>(i)], point(0), point(1), point(2), part.name));
     // Inside a member (distance 0) it is that member's; from outside, a tie is ambiguous.
@@ -277,11 +293,25 @@ class GroupSolverWrapper : public SolverWrapper {
     return best;
   }
 
-  /// The output interface restricted to the points member k owns (ids and coordinates kept).
+  /// Whether member k maps model part `part` (its `model_parts`), as it adopted the output.
+  bool maps_part(std::size_t k, const std::string& part) const {
+    for (const auto& block : members_[k]->output_interface().blocks())
+      if (block.model_part == part) return true;
+    return false;
+  }
+
+  static void copy_blocks(const Interface& from, Interface& to) {
+    for (const auto& block : to.blocks())
+      to.values(block.model_part, block.variable) = from.values(block.model_part, block.variable);
+  }
+
+  /// The output interface restricted to the points member k owns (ids and coordinates kept),
+  /// on the model parts it maps.
   Interface owned_output(std::size_t k) const {
     std::vector<Interface::Part> parts;
     const auto& all = output_.parts();
     for (std::size_t j = 0; j < all.size(); ++j) {
+      if (!maps_part(k, all[j].model_part->name)) continue;
       const ModelPart& whole = *all[j].model_part;
       const auto& rows = owned_rows_[k][j];
       auto part = std::make_shared<ModelPart>();
@@ -301,6 +331,7 @@ class GroupSolverWrapper : public SolverWrapper {
     for (std::size_t k = 0; k < members_.size(); ++k) {
       const Interface& own = members_[k]->output_interface();
       for (const auto& block : output_.blocks()) {
+        if (!maps_part(k, block.model_part)) continue;
         const auto& rows = owned_rows_[k][part_index(block.model_part)];
         const auto from = own.values(block.model_part, block.variable);
         auto to = output_.values(block.model_part, block.variable);
@@ -316,6 +347,8 @@ class GroupSolverWrapper : public SolverWrapper {
   /// Per member, per output model part: the rows of the group's output that it gives.
   std::vector<std::vector<std::vector<Eigen::Index>>> owned_rows_;
   Interface input_, output_;
+  /// Each member's input: the group's, on the model parts the member maps.
+  std::vector<Interface> member_inputs_;
   std::vector<double> solve_seconds_;
   int solves_ = 0;
 };

@@ -62,6 +62,8 @@ class MappedSolverWrapper : public SolverWrapper {
         report_(settings.get<bool>("report_quality", false)),
         exact_variables_(settings.get<std::vector<std::string>>("exact_round_trip", {})),
         exact_where_(settings.where("exact_round_trip")),
+        own_parts_(settings.get<std::vector<std::string>>("model_parts", {})),
+        own_parts_where_(settings.where("model_parts")),
         time_(run.timestep_start * run.delta_t) {
     if (settings.has("name")) inner_->set_default_name(name_);
     // Build one mapper now so that `cocopp check` validates the mapper settings.
@@ -86,8 +88,8 @@ class MappedSolverWrapper : public SolverWrapper {
   bool adopts_interfaces() const override { return true; }
 
   void adopt_interfaces(const Interface& input, const Interface& output) override {
-    input_ = input;
-    output_ = output;
+    input_ = only_own_parts(input);
+    output_ = only_own_parts(output);
     builds_ = 0;  // adopted again (a group gives it only its own points): a fresh count
     build_seconds_ = 0.0;
     pair_model_parts();
@@ -190,6 +192,29 @@ class MappedSolverWrapper : public SolverWrapper {
     std::string inner, outer;
     std::unique_ptr<Mapper> mapper;
   };
+
+  /// `model_parts: [flag_a]`: of the other side's model parts only these, in its order (a
+  /// body in a group that owns one patch of a fluid with several); all without the key.
+  Interface only_own_parts(const Interface& interface) const {
+    if (own_parts_.empty()) return interface;
+    const auto names = part_names(interface);
+    for (const auto& part : own_parts_)
+      if (std::find(names.begin(), names.end(), part) == names.end())
+        throw std::runtime_error(fmt::format(
+            "{}: mapped solver '{}': model_parts: '{}' is not a model part of the other side's "
+            "interface (it has: {}){}",
+            own_parts_where_, name_, part, fmt::join(names, ", "), did_you_mean(part, names)));
+    std::vector<Interface::Part> kept;
+    for (const auto& part : interface.parts())
+      if (std::find(own_parts_.begin(), own_parts_.end(), part.model_part->name) !=
+          own_parts_.end())
+        kept.push_back(part);
+    Interface only(std::move(kept));
+    for (const auto& block : only.blocks())
+      only.values(block.model_part, block.variable) =
+          interface.values(block.model_part, block.variable);
+    return only;
+  }
 
   static std::vector<std::string> part_names(const Interface& interface) {
     std::vector<std::string> names;
@@ -504,6 +529,8 @@ class MappedSolverWrapper : public SolverWrapper {
   bool report_;
   std::vector<std::string> exact_variables_;
   std::string exact_where_;
+  std::vector<std::string> own_parts_;  ///< `model_parts`: empty for all
+  std::string own_parts_where_;
   double time_;  ///< of the time step being solved
   Eigen::RowVector3d frame_origin_ = Eigen::RowVector3d::Zero();
   Eigen::RowVector3d frame_velocity_ = Eigen::RowVector3d::Zero();

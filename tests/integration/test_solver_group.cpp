@@ -96,6 +96,25 @@ TEST(SolverGroup, SideBySideWithTheFlowAsWell) {
   fs::remove_all(runs.split);
 }
 
+// Each member keeps its own restart files: 50 steps, then --restart to 100, gives the
+// uninterrupted run bit for bit.
+TEST(SolverGroup, ARestartedGroupContinuesAsTheUninterruptedRun) {
+  const fs::path whole = copy_example("tube/flow_ringmodel_split", "group_whole");
+  const fs::path parts = copy_example("tube/flow_ringmodel_split", "group_parts");
+  ASSERT_EQ(run_cocopp("run -q " + (whole / "case.yaml").string()).exit_code, 0);
+  edit(parts / "case.yaml", "number_of_timesteps: 100", "number_of_timesteps: 50");
+  ASSERT_EQ(run_cocopp("run -q " + (parts / "case.yaml").string()).exit_code, 0);
+  edit(parts / "case.yaml", "number_of_timesteps: 50", "number_of_timesteps: 100");
+  const CommandResult restarted = run_cocopp("run -q --restart " + (parts / "case.yaml").string());
+  ASSERT_EQ(restarted.exit_code, 0) << restarted.output;
+  EXPECT_EQ(read_dataset(whole / "results" / "case.h5", "x/wall/displacement"),
+            read_dataset(parts / "results" / "case.h5", "x/wall/displacement"));
+  EXPECT_EQ(read_dataset(whole / "results" / "case.h5", "y/wall/pressure"),
+            read_dataset(parts / "results" / "case.h5", "y/wall/pressure"));
+  fs::remove_all(whole);
+  fs::remove_all(parts);
+}
+
 /// `cocopp check` (and run) of the split example with one edit; the message it gives.
 std::string error_after(const std::string& tag, const std::string& from, const std::string& to,
                         const std::string& command = "run -q") {

@@ -46,6 +46,8 @@ cocopp_unit_test(solver_wrappers/process
                  LIBS cocopp_solver_wrappers DEPENDS cocopp-test-solver)
 cocopp_unit_test(solver_wrappers/mapped SOURCES test_mapped_solver_wrapper.cpp test_exact_round_trip.cpp
                  LIBS cocopp_solver_wrappers)
+cocopp_unit_test(solver_wrappers/group SOURCES test_group_solver_wrapper.cpp
+                 LIBS cocopp_solver_wrappers)
 # The OpenFOAM wrapper's coupler side (dictionary reading, case checks): no OpenFOAM needed.
 cocopp_unit_test(solver_wrappers/openfoam SOURCES test_openfoam_case.cpp
                  LIBS cocopp_solver_wrappers)
