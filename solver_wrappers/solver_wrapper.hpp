@@ -3,7 +3,9 @@
 // built-in tube types, a mapped wrapper, openfoam, calculix) implements this, so the coupling
 // algorithms never know which solver is behind an interface; only the coupling scheme
 // (coupler/schemes) asks one whether it adopts the other's interface (a mapped wrapper).
+#include <Eigen/Core>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 
 #include "core/case/registry.hpp"
@@ -76,6 +78,21 @@ class SolverWrapper {
   virtual void initialize_step(int step, double time) = 0;
   /// One coupling iteration: solve the step with `input`, return the output interface.
   virtual const Interface& solve(const Interface& input) = 0;
+  /// Steps the solver takes per coupling time step (its `substeps`): the coupling iterates on
+  /// whole windows of them (docs/coupling.md, "Substeps"). 1 for most solvers.
+  virtual int substeps() const { return 1; }
+  /// One coupling iteration of a window: `inputs` holds the input at the end of each of the
+  /// substeps(), one column each, laid out as input_interface(); returns the output at each,
+  /// one column each (output_interface() then holds the last). With one substep, solve().
+  virtual Eigen::MatrixXd solve_substeps(const Eigen::MatrixXd& inputs) {
+    if (inputs.cols() != substeps())
+      throw std::logic_error(name() + ": solve_substeps() was given " +
+                             std::to_string(inputs.cols()) + " substeps' inputs, expected " +
+                             std::to_string(substeps()));
+    Interface input = input_interface();
+    input.set_data(inputs.col(0));
+    return solve(input).data();
+  }
   /// Solver-coupling convergence (the `solver_coupling_convergence` criterion): from now on,
   /// every solve() also finds out whether the solver's own iterations (Newton, PIMPLE's outer
   /// loop) converged at their first iteration, i.e. whether the input changed its solution by

@@ -58,6 +58,8 @@ std::string message_name(MessageType type) {
       return "SAVE_RESTART";
     case MessageType::kReportConvergence:
       return "REPORT_CONVERGENCE";
+    case MessageType::kSubsteps:
+      return "SUBSTEPS";
     case MessageType::kHello:
       return "HELLO";
     case MessageType::kOk:
@@ -97,6 +99,10 @@ Frame encode_solve(const double* values, std::size_t count) {
 
 Frame encode_save_restart(std::int32_t step) {
   return start(MessageType::kSaveRestart).i32(step).take();
+}
+
+Frame encode_substeps(std::uint32_t substeps) {
+  return start(MessageType::kSubsteps).u32(substeps).take();
 }
 
 Frame encode_empty(MessageType type) {
@@ -165,6 +171,14 @@ std::int32_t decode_save_restart(const Frame& frame) {
   const std::int32_t step = reader.i32();
   reader.expect_end();
   return step;
+}
+
+std::uint32_t decode_substeps(const Frame& frame) {
+  FrameReader reader = open(frame, MessageType::kSubsteps);
+  const std::uint32_t substeps = reader.u32();
+  reader.expect_end();
+  if (substeps == 0) throw ProtocolError("SUBSTEPS of 0: a window has at least one substep");
+  return substeps;
 }
 
 void decode_empty(const Frame& frame, MessageType expected) {

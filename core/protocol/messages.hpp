@@ -27,6 +27,7 @@ enum class MessageType : std::uint8_t {
   kStop = 6,
   kSaveRestart = 7,
   kReportConvergence = 8,
+  kSubsteps = 9,
   kHello = 128,
   kOk = 129,
   kInterface = 130,
@@ -57,6 +58,10 @@ Frame encode_initialize_step(const StepInfo& step);
 Frame encode_solve(const double* values, std::size_t count);
 /// SAVE_RESTART: write what the solver needs to restart after `step`, the step it finalized last.
 Frame encode_save_restart(std::int32_t step);
+/// SUBSTEPS: the solver takes `substeps` steps of delta_t / substeps per coupling time step
+/// (a window); SOLVE then carries the input at each substep's end, DATA the output at each.
+/// Sent first, before INITIALIZE, only when the case asks for substeps.
+Frame encode_substeps(std::uint32_t substeps);
 /// A message without fields: FINALIZE_STEP, OUTPUT_STEP, STOP, REPORT_CONVERGENCE (from now on
 /// answer SOLVE with DATA_CONVERGED; sent once, before the first step, only when the case's
 /// criterion needs it), or the reply OK.
@@ -79,6 +84,8 @@ sdk::RunInfo decode_initialize(const Frame& frame);
 StepInfo decode_initialize_step(const Frame& frame);
 std::vector<double> decode_solve(const Frame& frame);
 std::int32_t decode_save_restart(const Frame& frame);
+/// SUBSTEPS; throws ProtocolError for 0.
+std::uint32_t decode_substeps(const Frame& frame);
 void decode_empty(const Frame& frame, MessageType expected);
 Hello decode_hello(const Frame& frame);
 sdk::InterfaceDescription decode_interface(const Frame& frame);

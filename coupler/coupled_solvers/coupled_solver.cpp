@@ -61,6 +61,14 @@ std::unique_ptr<ConvergenceCriterion> read_load_criterion(const Settings& settin
                   "(set scheme: parallel, or remove load_criterion)");
   return ConvergenceCriterionRegistry::instance().create(settings.child("load_criterion"));
 }
+/// `time_interpolation`: how a solver that takes substeps gets the other's values between
+/// the other's samples (Waveform).
+Waveform::Interpolation read_time_interpolation(const Settings& settings) {
+  const std::string name =
+      settings.get_choice("time_interpolation", "linear", {"constant", "linear", "quadratic"});
+  if (name == "constant") return Waveform::Interpolation::kConstant;
+  return name == "linear" ? Waveform::Interpolation::kLinear : Waveform::Interpolation::kQuadratic;
+}
 }  // namespace
 
 CoupledSolver::CoupledSolver(const Settings& settings)
@@ -76,6 +84,8 @@ CoupledSolver::CoupledSolver(const Settings& settings)
           settings.child_or_empty("divergence").get_in_range("factor", 1e6, Range::at_least(1.0))),
       growth_iterations_(
           settings.child_or_empty("divergence").get_int_in_range("growth_iterations", 10, 0)),
+      time_interpolation_(read_time_interpolation(settings)),
+      time_average_(settings.get<bool>("time_average", true)),
       backtracking_{settings.child_or_empty("backtracking").get_int_in_range("retries", 4, 0),
                     settings.child_or_empty("backtracking")
                         .get_in_range("factor", 0.5, {0.0, 1.0, true, true})} {}
@@ -83,9 +93,16 @@ CoupledSolver::CoupledSolver(const Settings& settings)
 CoupledSolver::~CoupledSolver() = default;
 
 void CoupledSolver::initialize(SolverWrapper& first, SolverWrapper& second) {
+  for (const SolverWrapper* solver : {&first, &second})
+    if (solver->substeps() > 1 && !takes_substeps())
+      scheme_settings_.fail(
+          "type", "coupled solver '" + type_ + "' cannot iterate on windows of substeps (solver '" +
+                      solver->name() + "' takes " + std::to_string(solver->substeps()) +
+                      " a time step): use iqni, aitken, relaxation or gauss_seidel");
   scheme_ = CouplingSchemeRegistry::instance().create_named(
       scheme_type_, scheme_settings_,
-      CouplingScheme::Parts{&first, &second, backtracking_, divergence_advice()});
+      CouplingScheme::Parts{&first, &second, backtracking_, divergence_advice(),
+                            time_interpolation_, time_average_});
   scheme_->set_loads_update([this](const Eigen::VectorXd& x, const Eigen::VectorXd& yt) {
     return second_solver_input(x, yt);
   });

@@ -135,6 +135,10 @@ class CoupledSolver {
   /// What to suggest when this method diverges.
   virtual std::string divergence_advice() const;
 
+  /// Whether this type can iterate on a window of substeps (its unknown x over the window):
+  /// not one that updates S's loads itself (ibqn) or models x = S(F(x)) with a surrogate of
+  /// its own (iqnism).
+  virtual bool takes_substeps() const { return true; }
   /// For a type whose iteration is serial by construction: `scheme: parallel` is a case error
   /// that says `why`.
   void require_serial_scheme(const Settings& settings, const std::string& why) const {
@@ -179,7 +183,9 @@ class CoupledSolver {
   std::unique_ptr<ConvergenceCriterion> load_criterion_;
   double last_load_residual_ = 0.0;  ///< ||y~ - y|| of the last iteration (side by side)
   double divergence_factor_;
-  int growth_iterations_;  ///< 0: off
+  int growth_iterations_;                       ///< 0: off
+  Waveform::Interpolation time_interpolation_;  ///< `time_interpolation` (substeps)
+  bool time_average_;                           ///< `time_average` (substeps)
   CouplingScheme::Backtracking backtracking_;
   std::unique_ptr<CouplingScheme> scheme_;  ///< the case's two solvers, after initialize()
   std::chrono::steady_clock::time_point step_start_;

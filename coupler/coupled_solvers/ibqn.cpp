@@ -85,6 +85,8 @@ class Ibqn : public CoupledSolver {
     s_.model->finalize_step();
   }
 
+  bool takes_substeps() const override { return false; }
+
   Eigen::VectorXd second_solver_input(const Eigen::VectorXd& x,
                                       const Eigen::VectorXd& yt) override {
     f_.model->add(scaling_.apply(kX, x), yt);

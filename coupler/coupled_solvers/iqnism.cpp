@@ -53,6 +53,8 @@ class Iqnism : public CoupledSolver {
     require_serial_scheme(s, "its surrogate models the serial fixed point x = S(F(x))");
   }
 
+  bool takes_substeps() const override { return false; }
+
   void create_own_solvers(const RunSettings& run) override {
     const Settings coupled = surrogate_settings_.child("coupled_solver");
     surrogate_ = CoupledSolverRegistry::instance().create(coupled);

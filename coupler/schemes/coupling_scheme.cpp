@@ -9,6 +9,8 @@ namespace cocopp {
 
 CouplingScheme::CouplingScheme(Parts parts)
     : solvers_{parts.first, parts.second},
+      interpolation_(parts.interpolation),
+      time_average_(parts.time_average),
       backtracking_(parts.backtracking),
       divergence_advice_(std::move(parts.divergence_advice)) {}
 
@@ -24,6 +26,7 @@ void CouplingScheme::start() {
   // Start from the displacement the second solver reports for its initial state (and the
   // loads the first reports for its own).
   x_.set_data(solvers_[1]->output_interface().data());
+  on_started();
 }
 
 void CouplingScheme::adopt_interfaces() {
@@ -69,6 +72,7 @@ void CouplingScheme::begin_step(int step, double time) {
   step_times_ = {0.0, 0.0};
   step_overlap_ = 0.0;
   for (int i = 0; i < 2; ++i) timed(i, [&] { solvers_[i]->initialize_step(step, time); });
+  on_step_begun();
 }
 
 Eigen::VectorXd CouplingScheme::evaluate_stepping_back(Eigen::VectorXd& u,

@@ -18,6 +18,7 @@
 #include "core/case/registry.hpp"
 #include "core/data/interface.hpp"
 #include "coupler/schemes/stopwatch.hpp"
+#include "coupler/schemes/waveform.hpp"
 #include "solver_wrappers/solver_wrapper.hpp"
 
 namespace cocopp {
@@ -38,6 +39,11 @@ class CouplingScheme {
     SolverWrapper* second = nullptr;
     Backtracking backtracking;
     std::string divergence_advice;  ///< what to suggest when a solver returns NaN
+    /// How a solver that takes substeps gets the other's values between its samples.
+    Waveform::Interpolation interpolation = Waveform::Interpolation::kLinear;
+    /// A structure with fewer substeps than the flow takes the mean of the loads over each of
+    /// its steps (their impulse), or else their values at its steps' ends.
+    bool time_average = true;
   };
   /// The loads S takes for this iteration's x and F's output y~: y~ itself unless set
   /// (ibqn updates y too; serial schemes only).
@@ -63,10 +69,12 @@ class CouplingScheme {
   virtual void set_unknown(const Eigen::VectorXd& u) = 0;
   /// The displacement residual x~ - x within a residual laid out as the unknown: what the
   /// convergence criterion measures in every scheme.
-  Eigen::VectorXd displacement_part(const Eigen::VectorXd& r) const { return r.head(x_.size()); }
+  Eigen::VectorXd displacement_part(const Eigen::VectorXd& r) const {
+    return r.head(displacement_size());
+  }
   /// The load residual y~ - y within it (empty where y is not part of the unknown).
   Eigen::VectorXd loads_part(const Eigen::VectorXd& r) const {
-    return r.tail(r.size() - x_.size());
+    return r.tail(r.size() - displacement_size());
   }
   void set_loads_update(LoadsUpdate update) { loads_update_ = std::move(update); }
 
@@ -97,6 +105,12 @@ class CouplingScheme {
   }
 
  protected:
+  /// How many values of the unknown are displacement (x; all its substeps' with substeps).
+  virtual Eigen::Index displacement_size() const { return x_.size(); }
+  /// After start(): the interfaces are known (x_ and y_ hold the initial values).
+  virtual void on_started() {}
+  /// In begin_step(), after the solvers were told.
+  virtual void on_step_begun() {}
   template <class Call>
   void timed(int index, Call call);
   const Interface& timed_solve(int index, const Interface& input);
@@ -111,6 +125,8 @@ class CouplingScheme {
   LoadsUpdate loads_update_;
   Interface x_, y_;  ///< layouts of F's input and output
   int step_ = 0;
+  Waveform::Interpolation interpolation_;
+  bool time_average_;
 
  private:
   void adopt_interfaces();

@@ -41,6 +41,10 @@ class RingWall(sdk.Solver):
         displacement[:, 1] = np.sqrt(area / np.pi) - self.radius
         return self.interface.join_output({("wall", "displacement"): displacement})
 
+    def can_substep(self):
+        """Massless rings hold no state between steps: nothing to keep for substeps."""
+        return True
+
 
 def main(argv):
     if sdk.wants_help(argv):

@@ -66,6 +66,14 @@ class GroupSolverWrapper : public SolverWrapper {
                                        "files carry",
                                        name_, member.name()));
     }
+    for (std::size_t k = 1; k < members_.size(); ++k)
+      if (members_[k]->substeps() != members_[0]->substeps())
+        entries[k].fail("solver_wrapper",
+                        fmt::format("member '{}' of group '{}' takes {} substeps a time step, '{}' "
+                                    "{}: the members of a "
+                                    "group share the window's substeps",
+                                    members_[k]->name(), name_, members_[k]->substeps(),
+                                    members_[0]->name(), members_[0]->substeps()));
     for (std::size_t i = 1; i < members_.size(); ++i)
       workers_.push_back(std::make_unique<WorkerThread>());
     solve_seconds_.assign(members_.size(), 0.0);
@@ -157,6 +165,40 @@ class GroupSolverWrapper : public SolverWrapper {
     gather_output();
     ++solves_;
     return output_;
+  }
+
+  int substeps() const override { return members_.front()->substeps(); }
+
+  /// As solve(), for each substep's column: each member its own part of every input column,
+  /// its own points of every output column.
+  Eigen::MatrixXd solve_substeps(const Eigen::MatrixXd& inputs) override {
+    if (substeps() == 1) return SolverWrapper::solve_substeps(inputs);
+    std::vector<Eigen::MatrixXd> member_inputs(members_.size()), member_outputs(members_.size());
+    for (std::size_t k = 0; k < members_.size(); ++k) {
+      member_inputs[k].resize(member_inputs_[k].size(), inputs.cols());
+      for (Eigen::Index j = 0; j < inputs.cols(); ++j) {
+        input_.set_data(inputs.col(j));
+        copy_blocks(input_, member_inputs_[k]);
+        member_inputs[k].col(j) = member_inputs_[k].data();
+      }
+    }
+    side_by_side([&](std::size_t k) {
+      const auto start = std::chrono::steady_clock::now();
+      member_outputs[k] = members_[k]->solve_substeps(member_inputs[k]);
+      solve_seconds_[k] +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    });
+    Eigen::MatrixXd outputs(output_.size(), inputs.cols());
+    for (Eigen::Index j = 0; j < inputs.cols(); ++j) {
+      for (std::size_t k = 0; k < members_.size(); ++k) {
+        Interface own = members_[k]->output_interface();
+        own.set_data(member_outputs[k].col(j));
+        gather_from(k, own);
+      }
+      outputs.col(j) = output_.data();
+    }
+    ++solves_;
+    return outputs;
   }
 
   void start_reporting_convergence() override {
@@ -328,16 +370,19 @@ class GroupSolverWrapper : public SolverWrapper {
 
   /// The members' outputs, each on its own points, into the group's output.
   void gather_output() {
-    for (std::size_t k = 0; k < members_.size(); ++k) {
-      const Interface& own = members_[k]->output_interface();
-      for (const auto& block : output_.blocks()) {
-        if (!maps_part(k, block.model_part)) continue;
-        const auto& rows = owned_rows_[k][part_index(block.model_part)];
-        const auto from = own.values(block.model_part, block.variable);
-        auto to = output_.values(block.model_part, block.variable);
-        for (std::size_t r = 0; r < rows.size(); ++r)
-          to.row(rows[r]) = from.row(static_cast<Eigen::Index>(r));
-      }
+    for (std::size_t k = 0; k < members_.size(); ++k)
+      gather_from(k, members_[k]->output_interface());
+  }
+
+  /// Member k's output `own` (laid out as its output interface) into the group's output.
+  void gather_from(std::size_t k, const Interface& own) {
+    for (const auto& block : output_.blocks()) {
+      if (!maps_part(k, block.model_part)) continue;
+      const auto& rows = owned_rows_[k][part_index(block.model_part)];
+      const auto from = own.values(block.model_part, block.variable);
+      auto to = output_.values(block.model_part, block.variable);
+      for (std::size_t r = 0; r < rows.size(); ++r)
+        to.row(rows[r]) = from.row(static_cast<Eigen::Index>(r));
     }
   }
 

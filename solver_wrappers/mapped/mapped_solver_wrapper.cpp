@@ -123,20 +123,37 @@ class MappedSolverWrapper : public SolverWrapper {
   }
 
   const Interface& solve(const Interface& input) override {
-    input_.set_data(input.data());
-    if (rebuild_ == "iteration") build_mappers();
-    const auto start = Clock::now();
-    Interface inner_input = inner_->input_interface();
-    for (auto& pair : input_pairs_)
-      for (const auto& variable : variables_of(inner_input, pair.inner))
-        inner_input.values(pair.inner, variable) = map_input(pair, variable);
-    map_seconds_ += seconds_since(start);
-    const Interface& inner_output = inner_->solve(inner_input);
+    const Interface& inner_output = inner_->solve(inner_input_for(input));
     const auto output_start = Clock::now();
     map_output(inner_output);
     map_seconds_ += seconds_since(output_start);
     ++solves_;
     return output_;
+  }
+
+  int substeps() const override { return inner_->substeps(); }
+
+  /// Each substep's input mapped onto the inner solver's points, its outputs back.
+  Eigen::MatrixXd solve_substeps(const Eigen::MatrixXd& inputs) override {
+    if (inner_->substeps() == 1) return SolverWrapper::solve_substeps(inputs);
+    Eigen::MatrixXd inner_inputs(inner_->input_interface().size(), inputs.cols());
+    Interface input = input_;
+    for (Eigen::Index j = 0; j < inputs.cols(); ++j) {
+      input.set_data(inputs.col(j));
+      inner_inputs.col(j) = inner_input_for(input, j == 0).data();
+    }
+    const Eigen::MatrixXd inner_outputs = inner_->solve_substeps(inner_inputs);
+    const auto output_start = Clock::now();
+    Interface inner_output = inner_->output_interface();
+    Eigen::MatrixXd outputs(output_.size(), inputs.cols());
+    for (Eigen::Index j = 0; j < inputs.cols(); ++j) {
+      inner_output.set_data(inner_outputs.col(j));
+      map_output(inner_output);
+      outputs.col(j) = output_.data();
+    }
+    map_seconds_ += seconds_since(output_start);
+    ++solves_;
+    return outputs;  // output_ holds the last substep's, as after solve()
   }
 
   void start_reporting_convergence() override { inner_->start_reporting_convergence(); }
@@ -168,6 +185,20 @@ class MappedSolverWrapper : public SolverWrapper {
   using Clock = std::chrono::steady_clock;
   static double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
+  }
+
+  /// The inner solver's input for `input` (laid out as the adopted input interface); the
+  /// mappers are rebuilt first with `rebuild: iteration` (once per coupling iteration).
+  Interface inner_input_for(const Interface& input, bool new_iteration = true) {
+    input_.set_data(input.data());
+    if (rebuild_ == "iteration" && new_iteration) build_mappers();
+    const auto start = Clock::now();
+    Interface inner_input = inner_->input_interface();
+    for (auto& pair : input_pairs_)
+      for (const auto& variable : variables_of(inner_input, pair.inner))
+        inner_input.values(pair.inner, variable) = map_input(pair, variable);
+    map_seconds_ += seconds_since(start);
+    return inner_input;
   }
 
   /// The i-th input model part of the coupler side maps to the i-th of the inner solver (with

@@ -200,6 +200,8 @@ ProcessSolverWrapper::ProcessSolverWrapper(const Settings& settings, const RunSe
       "solver_busy_wait", default_command ? default_command->solver_busy_wait : 0.0,
       Range::closed(0.0, 0.1));
   log_file_ = working_directory_ / settings.get<std::string>("log_file", name_ + ".log");
+  // Steps of its own per coupling time step (docs/coupling.md, "Substeps").
+  substeps_ = settings.get_int_in_range("substeps", 1, 1, 10000);
 }
 
 void ProcessSolverWrapper::read_command(const Settings& settings,
@@ -242,9 +244,10 @@ void ProcessSolverWrapper::set_default_name(const std::string& name) {
 }
 
 std::string ProcessSolverWrapper::describe() const {
-  return fmt::format("{}: {} (in {}; log {}; {} transport)", name_, join(command_, " "),
+  return fmt::format("{}: {} (in {}; log {}; {} transport{})", name_, join(command_, " "),
                      working_directory_.string(), log_file_.string(),
-                     protocol::transport_name(transport_kind_));
+                     protocol::transport_name(transport_kind_),
+                     substeps_ > 1 ? fmt::format("; {} substeps a time step", substeps_) : "");
 }
 
 std::string ProcessSolverWrapper::started() const {
@@ -313,12 +316,17 @@ void ProcessSolverWrapper::initialize() {
   if (initialized_) throw std::logic_error("solver '" + name_ + "' is initialized twice");
   if (state_ == State::kNotStarted) start();
   wait_for_hello();
+  if (substeps_ > 1) {  // before INITIALIZE: the solver's own time step depends on it
+    const Frame substeps = protocol::encode_substeps(static_cast<std::uint32_t>(substeps_));
+    call("substeps", &substeps, MessageType::kOk, timeout_, decode_ok);
+  }
   const Frame request = protocol::encode_initialize({run_.delta_t, run_.timestep_start});
   build_interfaces(
       call("initialize", &request, MessageType::kInterface, timeout_, protocol::decode_interface));
   // From now on every reply is DATA of the output interface, OK, or a text: a longer frame
   // is a corrupt stream, refused before it is read.
-  const auto data_frame = 1 + 8 + 8 * static_cast<std::size_t>(output_interface_.size());
+  const auto data_frame =
+      1 + 8 + 8 * static_cast<std::size_t>(output_interface_.size()) * std::size_t(substeps_);
   channel_->set_max_payload(std::max(data_frame, 1 + 4 + protocol::kMaxReceivedText));
   initialized_ = true;
 }
@@ -408,6 +416,8 @@ void ProcessSolverWrapper::initialize_step(int step, double time) {
 }
 
 const Interface& ProcessSolverWrapper::solve(const Interface& input) {
+  if (substeps_ > 1)
+    throw std::logic_error("solver '" + name_ + "' takes substeps: solve_substeps(), not solve()");
   if (!input.same_layout(input_interface_))
     throw std::invalid_argument(
         fmt::format("solver '{}': solve() was given {} but the solver's input interface is {}",
@@ -431,6 +441,36 @@ const Interface& ProcessSolverWrapper::solve(const Interface& input) {
                     output_interface_.describe()));
   output_interface_.set_data(Eigen::Map<const Eigen::VectorXd>(output.data(), output.size()));
   return output_interface_;
+}
+
+Eigen::MatrixXd ProcessSolverWrapper::solve_substeps(const Eigen::MatrixXd& inputs) {
+  if (substeps_ == 1) return SolverWrapper::solve_substeps(inputs);
+  if (inputs.rows() != input_interface_.size() || inputs.cols() != substeps_)
+    throw std::invalid_argument(fmt::format(
+        "solver '{}': solve_substeps() was given {} x {} values, the window takes {} x {}", name_,
+        inputs.rows(), inputs.cols(), input_interface_.size(), substeps_));
+  ++iteration_;
+  // Column-major: one substep's input after the other, as SOLVE carries them.
+  const Frame request = protocol::encode_solve(inputs.data(), std::size_t(inputs.size()));
+  std::vector<double> output;
+  if (reporting_convergence_) {
+    auto data = call("solve", &request, MessageType::kDataConverged, timeout_,
+                     protocol::decode_data_converged);
+    output = std::move(data.values);
+    converged_at_first_iteration_ = data.converged;
+  } else {
+    output = call("solve", &request, MessageType::kData, timeout_, protocol::decode_data);
+  }
+  const Eigen::Index rows = output_interface_.size();
+  if (static_cast<Eigen::Index>(output.size()) != rows * substeps_)
+    fail(
+        fmt::format("solver '{}' returned {} values from solve {}; a window of {} substeps of "
+                    "its output interface has {} ({} each)",
+                    name_, output.size(), at_position("solve"), substeps_, rows * substeps_,
+                    output_interface_.describe()));
+  const Eigen::MatrixXd outputs = Eigen::Map<const Eigen::MatrixXd>(output.data(), rows, substeps_);
+  output_interface_.set_data(outputs.col(substeps_ - 1));
+  return outputs;
 }
 
 void ProcessSolverWrapper::start_reporting_convergence() {

@@ -70,6 +70,8 @@ class ProcessSolverWrapper : public SolverWrapper {
   void complete_step_requests() override { collect_replies(); }
   void initialize_step(int step, double time) override;
   const Interface& solve(const Interface& input) override;
+  int substeps() const override { return substeps_; }
+  Eigen::MatrixXd solve_substeps(const Eigen::MatrixXd& inputs) override;
   /// Sends REPORT_CONVERGENCE; a solver that cannot tell answers ERROR with the reason.
   void start_reporting_convergence() override;
   bool converged_at_first_iteration() const override { return converged_at_first_iteration_; }
@@ -161,6 +163,7 @@ class ProcessSolverWrapper : public SolverWrapper {
   int step_ = 0;
   bool step_started_ = false;
   int iteration_ = 0;
+  int substeps_ = 1;  ///< the solver's steps per coupling time step
   bool overlap_step_requests_ = false;
   struct PostedRequest {
     std::string name;

@@ -49,13 +49,13 @@ VARIABLE_COMPONENTS = {"displacement": 3, "pressure": 1, "traction": 3, "force":
 # 128, replies from 128.
 MESSAGE_TYPES = {"INITIALIZE": 1, "INITIALIZE_STEP": 2, "SOLVE": 3, "FINALIZE_STEP": 4,
                  "OUTPUT_STEP": 5, "STOP": 6, "SAVE_RESTART": 7, "REPORT_CONVERGENCE": 8,
-                 "HELLO": 128, "OK": 129, "INTERFACE": 130, "DATA": 131, "ERROR": 132,
+                 "SUBSTEPS": 9, "HELLO": 128, "OK": 129, "INTERFACE": 130, "DATA": 131, "ERROR": 132,
                  "REJECTED": 133, "DATA_CONVERGED": 134}
 # The longest frame payload either side accepts, in bytes.
 MAX_PAYLOAD = 1 << 30
 
 (_INITIALIZE, _INITIALIZE_STEP, _SOLVE, _FINALIZE_STEP, _OUTPUT_STEP, _STOP, _SAVE_RESTART,
- _REPORT_CONVERGENCE, _HELLO, _OK, _INTERFACE, _DATA, _ERROR, _REJECTED,
+ _REPORT_CONVERGENCE, _SUBSTEPS, _HELLO, _OK, _INTERFACE, _DATA, _ERROR, _REJECTED,
  _DATA_CONVERGED) = MESSAGE_TYPES.values()  # in MESSAGE_TYPES' order
 _REQUEST_NAMES = {number: name for name, number in MESSAGE_TYPES.items() if number < 128}
 
@@ -208,6 +208,21 @@ class Solver:
     def converged_at_first_iteration(self):
         return False
 
+    def can_substep(self):
+        """Substeps (docs/protocol.md, SUBSTEPS): True if the solver can take k steps of its own
+        per coupling time step. The SDK then drives each window: the solver sees a run of time
+        step delta_t / k whose steps are the substeps, and every coupling iteration is k of its
+        steps from the window's start (initialize_step, solve with that substep's input,
+        finalize_step but for the last). For that save_state() keeps the committed state in
+        memory at the window's start and restore_state() goes back to it."""
+        return False
+
+    def save_state(self):
+        pass
+
+    def restore_state(self):
+        pass
+
 
 def wants_help(argv):
     return any(argument in ("--help", "-h") for argument in argv[1:])
@@ -255,6 +270,10 @@ class _Server:
         self.channel = channel
         self.initialized = False
         self.reporting_convergence = False
+        self.substeps = 1          # per coupling time step (SUBSTEPS)
+        self.window_delta_t = 0.0  # the coupling time step
+        self.window = None         # (step, time) of the window being solved (its end)
+        self.window_solves = 0
 
     def run(self):
         try:
@@ -285,6 +304,11 @@ class _Server:
             return False
         if kind not in _REQUEST_NAMES:
             raise ProtocolError(f"unexpected request type {kind}")
+        if kind == _SUBSTEPS:
+            _expect_size(request, 5)
+            (substeps,) = struct.unpack_from("<I", request, 1)
+            self.on_substeps(substeps)
+            return True
         if kind != _INITIALIZE and not self.initialized:
             raise ProtocolError(f"{_REQUEST_NAMES[kind]} before INITIALIZE")
         if kind == _INITIALIZE:
@@ -294,10 +318,18 @@ class _Server:
         elif kind == _INITIALIZE_STEP:
             _expect_size(request, 13)
             step, time_ = struct.unpack_from("<id", request, 1)
-            self.solver.initialize_step(step, time_)
+            if self.substeps == 1:
+                self.solver.initialize_step(step, time_)
+            else:  # the window's substeps start with its first SOLVE
+                self.window = (step, time_)
+                self.window_solves = 0
+                self.solver.save_state()
             self.reply_ok()
         elif kind == _SOLVE:
-            self.on_solve(_decode_f64_array(request))
+            if self.substeps == 1:
+                self.on_solve(_decode_f64_array(request))
+            else:
+                self.on_solve_window(_decode_f64_array(request))
         elif kind == _FINALIZE_STEP:
             _expect_size(request, 1)
             self.solver.finalize_step()
@@ -310,7 +342,7 @@ class _Server:
             _expect_size(request, 5)
             (step,) = struct.unpack_from("<i", request, 1)
             if self.solver.can_restart():
-                self.solver.save_restart(step)
+                self.solver.save_restart(step * self.substeps)
             self.reply_ok()
         elif kind == _REPORT_CONVERGENCE:
             _expect_size(request, 1)
@@ -327,9 +359,25 @@ class _Server:
     def reply_ok(self):
         self.channel.send(bytes([_OK]))
 
+    def on_substeps(self, substeps):
+        if self.initialized:
+            raise ProtocolError("SUBSTEPS after INITIALIZE")
+        if substeps == 0:
+            raise ProtocolError("SUBSTEPS of 0: a window has at least one substep")
+        if substeps > 1 and not self.solver.can_substep():
+            raise RuntimeError(
+                f"the case asks this solver for {substeps} substeps per coupling time step, but "
+                "it cannot take substeps: it keeps no state in memory to go back to at each "
+                "coupling iteration (Solver.can_substep, save_state, restore_state; "
+                "docs/protocol.md)")
+        self.substeps = substeps
+        self.reply_ok()
+
     def on_initialize(self, run):
         if self.initialized:
             raise ProtocolError("INITIALIZE received twice")
+        self.window_delta_t = run.delta_t
+        run = RunInfo(run.delta_t / self.substeps, run.timestep_start * self.substeps)
         if run.timestep_start > 0 and not self.solver.can_restart():
             raise RuntimeError(
                 f"the coupler restarts the run after time step {run.timestep_start}, but this "
@@ -357,6 +405,43 @@ class _Server:
                          "as the interface description implies")
         if self.reporting_convergence:
             converged = bool(self.solver.converged_at_first_iteration())
+            self.channel.send(bytes([_DATA_CONVERGED]) + _f64_array(output) +
+                              bytes([1 if converged else 0]))
+        else:
+            self.channel.send(bytes([_DATA]) + _f64_array(output))
+
+
+    def on_solve_window(self, values):
+        """SOLVE of a window of substeps: from the window's start, each substep with its
+        input; DATA holds the outputs of all, in order."""
+        interface, k = self.solver.interface, self.substeps
+        if values.size != k * interface.input_size:
+            raise ProtocolError(f"SOLVE carried {values.size} values; a window of {k} substeps "
+                                f"takes {k * interface.input_size}")
+        if self.window_solves > 0:
+            self.solver.restore_state()
+        self.window_solves += 1
+        window_step, window_time = self.window
+        outputs, converged = [], True
+        for j in range(1, k + 1):
+            step = (window_step - 1) * k + j
+            time_ = window_time - (k - j) * (self.window_delta_t / k)
+            self.solver.initialize_step(step, time_)
+            part = values[(j - 1) * interface.input_size:j * interface.input_size]
+            try:
+                output = self.solver.solve(part)
+            except InputRejected as reason:
+                self.solver.restore_state()  # the window's start, as a rejection promises
+                print(f"cocopp solver: input rejected in substep {j}: {reason}", file=sys.stderr)
+                self.channel.send(bytes([_REJECTED]) + _string(str(reason)))
+                return
+            outputs.append(_vector(output, interface.output_size, "solve() returned",
+                                   "as the interface description implies"))
+            converged = converged and bool(self.solver.converged_at_first_iteration())
+            if j < k:
+                self.solver.finalize_step()
+        output = np.concatenate(outputs)
+        if self.reporting_convergence:
             self.channel.send(bytes([_DATA_CONVERGED]) + _f64_array(output) +
                               bytes([1 if converged else 0]))
         else:

@@ -92,6 +92,7 @@ class Server {
       reply_ok();  // stopped before it started: nothing to finalize
       return false;
     }
+    if (type == MessageType::kSubsteps) return on_substeps(protocol::decode_substeps(request));
     if (type != MessageType::kInitialize && !initialized_)
       throw protocol::ProtocolError(protocol::message_name(type) + " before INITIALIZE");
     switch (type) {
@@ -100,11 +101,20 @@ class Server {
         return true;
       case MessageType::kInitializeStep: {
         const auto step = protocol::decode_initialize_step(request);
-        solver_.initialize_step(step.step, step.time);
+        if (substeps_ == 1) {
+          solver_.initialize_step(step.step, step.time);
+        } else {  // the window's substeps start with its first SOLVE
+          window_ = step;
+          window_solves_ = 0;
+          solver_.save_state();
+        }
         return reply_ok();
       }
       case MessageType::kSolve:
-        on_solve(protocol::decode_solve(request));
+        if (substeps_ == 1)
+          on_solve(protocol::decode_solve(request));
+        else
+          on_solve_window(protocol::decode_solve(request));
         return true;
       case MessageType::kFinalizeStep:
         protocol::decode_empty(request, type);
@@ -116,7 +126,7 @@ class Server {
         return reply_ok();
       case MessageType::kSaveRestart: {
         const std::int32_t step = protocol::decode_save_restart(request);
-        if (solver_.can_restart()) solver_.save_restart(step);
+        if (solver_.can_restart()) solver_.save_restart(step * substeps_);
         return reply_ok();
       }
       case MessageType::kReportConvergence:
@@ -139,8 +149,23 @@ class Server {
     return true;
   }
 
-  void on_initialize(const RunInfo& run) {
+  bool on_substeps(std::uint32_t substeps) {
+    if (initialized_) throw protocol::ProtocolError("SUBSTEPS after INITIALIZE");
+    if (substeps > 1 && !solver_.can_substep())
+      throw std::runtime_error(
+          "the case asks this solver for " + std::to_string(substeps) +
+          " substeps per coupling time step, but it cannot take substeps: it keeps no state in "
+          "memory to go back to at each coupling iteration (Solver::can_substep, save_state, "
+          "restore_state; docs/protocol.md)");
+    substeps_ = static_cast<std::int32_t>(substeps);
+    return reply_ok();
+  }
+
+  void on_initialize(RunInfo run) {
     if (initialized_) throw protocol::ProtocolError("INITIALIZE received twice");
+    window_delta_t_ = run.delta_t;
+    run.delta_t /= substeps_;  // the solver's own time step
+    run.timestep_start *= substeps_;
     if (run.timestep_start > 0 && !solver_.can_restart())
       throw std::runtime_error(
           "the coupler restarts the run after time step " + std::to_string(run.timestep_start) +
@@ -173,6 +198,46 @@ class Server {
                                          : protocol::encode_data(output));
   }
 
+  /// SOLVE of a window of substeps: from the window's start, each substep with its input;
+  /// DATA holds the outputs of all, in order.
+  void on_solve_window(const std::vector<double>& input) {
+    const auto k = static_cast<std::size_t>(substeps_);
+    if (input.size() != k * input_size_)
+      throw protocol::ProtocolError("SOLVE carried " + std::to_string(input.size()) +
+                                    " values; a window of " + std::to_string(k) +
+                                    " substeps takes " + std::to_string(k * input_size_));
+    if (window_solves_++ > 0) solver_.restore_state();
+    std::vector<double> output;
+    output.reserve(k * output_size_);
+    bool converged = true;
+    for (std::int32_t j = 1; j <= substeps_; ++j) {
+      const std::int32_t step = (window_.step - 1) * substeps_ + j;
+      // (the window's end less the substeps still to come: the last is the window's time)
+      const double time = window_.time - (substeps_ - j) * (window_delta_t_ / substeps_);
+      solver_.initialize_step(step, time);
+      const auto from = input.begin() + static_cast<std::ptrdiff_t>((j - 1) * input_size_);
+      std::vector<double> substep_output;
+      try {
+        substep_output = solver_.solve(
+            std::vector<double>(from, from + static_cast<std::ptrdiff_t>(input_size_)));
+      } catch (const InputRejected& e) {
+        solver_.restore_state();  // the window's start, as a rejection promises
+        std::cerr << "cocopp solver: input rejected in substep " << j << ": " << e.what() << "\n";
+        channel_.send(protocol::encode_rejected(e.what()));
+        return;
+      }
+      if (substep_output.size() != output_size_)
+        throw std::runtime_error("solve() returned " + std::to_string(substep_output.size()) +
+                                 " values; the interface description implies " +
+                                 std::to_string(output_size_));
+      output.insert(output.end(), substep_output.begin(), substep_output.end());
+      converged = converged && solver_.converged_at_first_iteration();
+      if (j < substeps_) solver_.finalize_step();
+    }
+    channel_.send(reporting_convergence_ ? protocol::encode_data_converged(output, converged)
+                                         : protocol::encode_data(output));
+  }
+
   // Errors in the description are the solver's: report them here, where they are made.
   void validate(const InterfaceDescription& description) {
     std::set<std::string> names;
@@ -200,6 +265,10 @@ class Server {
   pid_t coupler_pid_;
   bool initialized_ = false;
   bool reporting_convergence_ = false;
+  std::int32_t substeps_ = 1;    ///< per coupling time step (SUBSTEPS)
+  double window_delta_t_ = 0.0;  ///< the coupling time step
+  protocol::StepInfo window_;    ///< the window being solved (its end)
+  int window_solves_ = 0;        ///< SOLVEs of it so far
   std::size_t input_size_ = 0;
   std::size_t output_size_ = 0;
 };

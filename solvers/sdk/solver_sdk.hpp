@@ -61,6 +61,18 @@ class Solver {
         "iteration (solver-coupling convergence)");
   }
   virtual bool converged_at_first_iteration() const { return false; }
+
+  /// Substeps (docs/protocol.md, SUBSTEPS): the case may let a solver take k steps of its own
+  /// per coupling time step (a window). The SDK then drives the window: the solver sees a run
+  /// of time step delta_t / k whose steps are the substeps (initialize() gets both divided and
+  /// multiplied accordingly, save_restart() the substep), and every coupling iteration is k of
+  /// its steps from the window's start: initialize_step(), solve() with the input at that
+  /// substep's end, finalize_step() but for the last. For that a solver keeps its committed
+  /// state in memory: save_state() (at the window's start) and restore_state() (before the
+  /// next iteration of the window). A solver that can returns true here.
+  virtual bool can_substep() const { return false; }
+  virtual void save_state() {}
+  virtual void restore_state() {}
 };
 
 /// Whether the command line asks for help (--help or -h): solvers print their usage then.

@@ -97,6 +97,11 @@ class TubeSolver : public sdk::Solver {
   void finalize_step() override { model_->finalize_step(); }
   void output_step() override { output(); }
 
+  // Substeps: the model's whole state, step counter included, is a copy away.
+  bool can_substep() const override { return true; }
+  void save_state() override { saved_ = std::make_unique<Model>(*model_); }
+  void restore_state() override { *model_ = *saved_; }
+
   bool can_restart() const override { return true; }
   void save_restart(std::int32_t step) override {
     if (step != model_->step())
@@ -112,6 +117,7 @@ class TubeSolver : public sdk::Solver {
   std::string name_;
   Factory make_;
   std::unique_ptr<Model> model_;
+  std::unique_ptr<Model> saved_;  ///< the window's start (substeps)
   double delta_t_ = 0.0;
 };
 

@@ -26,6 +26,8 @@ void decode_as_its_type(const Frame& frame) {
     }
     case MessageType::kSaveRestart:
       return expect_same(encode_save_restart(decode_save_restart(frame)), frame);
+    case MessageType::kSubsteps:
+      return expect_same(encode_substeps(decode_substeps(frame)), frame);
     case MessageType::kFinalizeStep:
     case MessageType::kOutputStep:
     case MessageType::kStop:

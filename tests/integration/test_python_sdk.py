@@ -4,7 +4,9 @@
 transports (the built-in ring model's results to the bit), solver-coupling convergence reported
 by the solver (and refused by one that cannot), and what goes wrong on the solver's side
 reaching the user as the C++ SDK sends it: a rejected input, a wrong output size, an
-exception, a start outside cocopp, --help.
+exception, a start outside cocopp, --help. Substeps: the SDK drives a window of two substeps
+as the C++ SDK does (the built-in ring model's results to the bit), and a solver that cannot
+take substeps says so.
 
 usage: test_python_sdk.py BIN_DIR SOURCE_DIR
 """
@@ -42,6 +44,10 @@ FAULTS = {
     def converged_at_first_iteration(self):
         return self.iteration == 3
 """,
+    "cannot_substep": """
+    def can_substep(self):
+        return False
+""",
     "rejects_once": """
     rejected = False
     def solve(self, values):
@@ -66,17 +72,21 @@ SOLVER_CONVERGENCE = """      - type: solver_coupling_convergence
 """
 
 
-def write_case(directory, name, command, transport="pipe", steps=100, solver_convergence=False):
+def write_case(directory, name, command, transport="pipe", steps=100, solver_convergence=False,
+               substeps=1):
     with open(os.path.join(directory, "case.yaml")) as original:
         text = original.read()
     if solver_convergence:  # the wall's report instead of the residual
         relative = "      - type: relative_norm\n        tolerance: 1.0e-6\n"
         check(relative in text, "case.yaml has the relative_norm criterion to replace")
         text = text.replace(relative, SOLVER_CONVERGENCE)
+    if substeps > 1:  # with a window of two, one step of the 100 stalls at 2.4e-6
+        text = text.replace("tolerance: 1.0e-6", "tolerance: 1.0e-5")
     text = text.replace("../build/ring-wall", command).replace("number_of_timesteps: 100",
                                                                f"number_of_timesteps: {steps}")
     text = text.replace("    working_directory: structure\n",
-                        f"    working_directory: structure\n    transport: {transport}\n")
+                        f"    working_directory: structure\n    transport: {transport}\n" +
+                        (f"    substeps: {substeps}\n" if substeps > 1 else ""))
     with open(os.path.join(directory, name), "w") as case:
         case.write(text)
 
@@ -104,6 +114,24 @@ def main():
             same_results(reference_h5, os.path.join(project, "results", f"{transport}.h5"),
                          f"ring_wall.py, {transport} transport")
 
+        # Substeps: the SDK drives the window; the built-in ring model's results to the bit.
+        substepped = os.path.join(scratch, "flow_ringmodel_substeps")
+        shutil.copytree(reference, substepped, ignore=shutil.ignore_patterns("results"))
+        with open(os.path.join(substepped, "case.yaml")) as case:
+            text = case.read()
+        with open(os.path.join(substepped, "case.yaml"), "w") as case:
+            case.write(text.replace("    working_directory: structure\n",
+                                    "    working_directory: structure\n    substeps: 2\n")
+                       .replace("tolerance: 1.0e-6", "tolerance: 1.0e-5"))
+        result = cocopp_run(bin_dir, substepped, "case.yaml", env)
+        check(result.returncode == 0, "the built-in ring model runs with 2 substeps")
+        write_case(project, "substeps.yaml", "python3, ../ring_wall.py", substeps=2)
+        result = cocopp_run(bin_dir, project, "substeps.yaml", env)
+        check(result.returncode == 0 and "2 substeps a time step" in result.stdout,
+              "ring_wall.py runs with 2 substeps")
+        same_results(os.path.join(substepped, "results", "case.h5"),
+                     os.path.join(project, "results", "substeps.h5"), "ring_wall.py, 2 substeps")
+
         for fault, method in FAULTS.items():
             with open(os.path.join(project, f"{fault}.py"), "w") as script:
                 script.write("import sys\nimport cocopp_sdk as sdk\nimport ring_wall\n\n"
@@ -111,7 +139,8 @@ def main():
                              "\nring_wall.RingWall = RingWall\n"
                              "sys.exit(ring_wall.main(sys.argv))\n")
             write_case(project, f"{fault}.yaml", f"python3, ../{fault}.py", steps=5,
-                       solver_convergence=fault == "converges_at_third")
+                       solver_convergence=fault == "converges_at_third",
+                       substeps=2 if fault == "cannot_substep" else 1)
         write_case(project, "cannot_report.yaml", "python3, ../ring_wall.py", steps=5,
                    solver_convergence=True)
         env_faults = dict(env, PYTHONPATH=env["PYTHONPATH"] + os.pathsep + project)
@@ -136,6 +165,10 @@ def main():
         check(result.returncode != 0 and "solver 'wall' reported an error: this solver cannot "
               "report whether its own iterations converged" in result.stdout,
               "a solver that cannot report solver-coupling convergence says so")
+        result = cocopp_run(bin_dir, project, "cannot_substep.yaml", env_faults)
+        check(result.returncode != 0 and "solver 'wall' reported an error: the case asks this "
+              "solver for 2 substeps per coupling time step, but it cannot take substeps"
+              in result.stdout, "a solver that cannot take substeps says so")
         result = cocopp_run(bin_dir, project, "rejects_once.yaml", env_faults)
         with open(os.path.join(project, "results", "rejects_once.summary.json")) as summary:
             check(result.returncode == 0 and "step 3: solver 'wall' rejected the input of "

@@ -80,6 +80,7 @@ cocopp_unit_test(coupler/coupled_solvers
 cocopp_unit_test(coupler/coupled_solvers/models
   SOURCES test_cross_projection.cpp test_ls.cpp test_multi_vector.cpp test_qr_factorization.cpp
   LIBS cocopp_coupling)
+cocopp_unit_test(coupler/schemes SOURCES test_waveform.cpp LIBS cocopp_coupling)
 cocopp_unit_test(coupler/convergence SOURCES test_convergence.cpp LIBS cocopp_coupling)
 cocopp_unit_test(coupler/predictors SOURCES test_predictors.cpp LIBS cocopp_coupling)
 # The HDF5 results file (read back with the C API and with h5py), the JSON run summary and the
