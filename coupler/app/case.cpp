@@ -152,6 +152,7 @@ Case load_case(const std::filesystem::path& file, bool restart) {
   if (c.solvers[0]->name() == c.solvers[1]->name())
     wrappers[1].fail("name", "both solver wrappers are called '" + c.solvers[0]->name() +
                                  "': give them different names");
+  c.coupled_solver->check_solvers(*c.solvers[0], *c.solvers[1]);
   c.coupled_solver->create_own_solvers(c.run);
 
   root.check_unused_keys();

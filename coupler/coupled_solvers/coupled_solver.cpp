@@ -93,12 +93,7 @@ CoupledSolver::CoupledSolver(const Settings& settings)
 CoupledSolver::~CoupledSolver() = default;
 
 void CoupledSolver::initialize(SolverWrapper& first, SolverWrapper& second) {
-  for (const SolverWrapper* solver : {&first, &second})
-    if (solver->substeps() > 1 && !takes_substeps())
-      scheme_settings_.fail(
-          "type", "coupled solver '" + type_ + "' cannot iterate on windows of substeps (solver '" +
-                      solver->name() + "' takes " + std::to_string(solver->substeps()) +
-                      " a time step): use iqni, aitken, relaxation or gauss_seidel");
+  check_solvers(first, second);
   scheme_ = CouplingSchemeRegistry::instance().create_named(
       scheme_type_, scheme_settings_,
       CouplingScheme::Parts{&first, &second, backtracking_, divergence_advice(),
@@ -110,6 +105,22 @@ void CoupledSolver::initialize(SolverWrapper& first, SolverWrapper& second) {
   predictor_->initialize(scheme_->unknown());
   criterion_->attach_solvers(scheme_->solvers());
   on_initialized();
+}
+
+void CoupledSolver::check_solvers(const SolverWrapper& first, const SolverWrapper& second) const {
+  for (const SolverWrapper* solver : {&first, &second}) {
+    if (solver->substeps() == 1) continue;
+    const std::string takes = "solver '" + solver->name() + "' takes " +
+                              std::to_string(solver->substeps()) + " substeps a time step";
+    if (!takes_substeps())
+      scheme_settings_.fail("type", "coupled solver '" + type_ +
+                                        "' cannot iterate on windows of substeps (" + takes +
+                                        "): use iqni, aitken, relaxation or gauss_seidel");
+    if (side_by_side())
+      scheme_settings_.fail("scheme", takes +
+                                          ", which the parallel scheme does not yet iterate on: "
+                                          "use scheme serial");
+  }
 }
 
 const Interface& CoupledSolver::x() const {

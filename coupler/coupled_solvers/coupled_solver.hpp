@@ -88,10 +88,18 @@ class CoupledSolver {
   /// so that another coupled solver can continue the run.
   void load_state(const State& state, bool own = true);
   /// Wall time spent in each solver since initialize(), in seconds.
-  const std::array<double, 2>& solver_time_total() const { return scheme_->total_times(); }
+  /// Case errors of this coupled solver with these solvers, found when the case is loaded: a
+  /// solver that takes substeps needs a type and a scheme that iterate on windows.
+  void check_solvers(const SolverWrapper& first, const SolverWrapper& second) const;
+  const std::array<double, 2>& solver_time_total() const {
+    static const std::array<double, 2> none{};
+    return scheme_ ? scheme_->total_times() : none;  // (no scheme: initialize() failed)
+  }
   /// Wall time during which a solver ran since initialize(): the sum of solver_time_total()
   /// less what they ran side by side.
-  double solvers_wall_time_total() const { return scheme_->total_solvers_wall_time(); }
+  double solvers_wall_time_total() const {
+    return scheme_ ? scheme_->total_solvers_wall_time() : 0.0;
+  }
   /// Wall time spent in the coupled solver's own solvers (iqnism's surrogate, its coupling
   /// included) since initialize(), in seconds: not the coupler's time.
   double own_solvers_time_total() const { return own_solvers_time_total_; }

@@ -19,14 +19,8 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 class ParallelScheme : public CouplingScheme {
  public:
-  ParallelScheme(const Settings& settings, Parts parts) : CouplingScheme(std::move(parts)) {
-    for (const SolverWrapper* solver : solvers_)
-      if (solver->substeps() > 1)
-        settings.fail("scheme", "solver '" + solver->name() + "' takes " +
-                                    std::to_string(solver->substeps()) +
-                                    " substeps a time step, which the parallel scheme does not "
-                                    "yet iterate on: use scheme serial");
-  }
+  // (Substeps are refused when the case is loaded: CoupledSolver::check_solvers.)
+  ParallelScheme(const Settings&, Parts parts) : CouplingScheme(std::move(parts)) {}
 
   std::vector<const Interface*> unknown_layouts() const override { return {&x_, &y_}; }
   Eigen::VectorXd unknown() const override {
