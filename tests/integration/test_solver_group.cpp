@@ -115,6 +115,37 @@ TEST(SolverGroup, ARestartedGroupContinuesAsTheUninterruptedRun) {
   fs::remove_all(parts);
 }
 
+// A group whose members take substeps: each member's window mapped as a whole; the one-wall
+// run with the same substeps, to the coupling tolerance.
+TEST(SolverGroup, MembersTakeTheirWindowsOfSubsteps) {
+  const fs::path one = copy_example("tube/flow_ringmodel", "group_substeps_one");
+  const fs::path split = copy_example("tube/flow_ringmodel_split", "group_substeps_split");
+  edit(one / "case.yaml", "    working_directory: structure\n",
+       "    working_directory: structure\n    substeps: 2\n");
+  for (const std::string member : {"wall_a", "wall_b"})
+    edit(split / "case.yaml", "working_directory: " + member + "}",
+         "working_directory: " + member + ", substeps: 2}");
+  for (const fs::path& dir : {one, split}) {
+    edit(dir / "case.yaml", "tolerance: 1.0e-6", "tolerance: 1.0e-5");  // a stall at 2.4e-6
+    const CommandResult run = run_cocopp("run -q " + (dir / "case.yaml").string());
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+  }
+  EXPECT_LT(largest_difference(read_dataset(one / "results" / "case.h5", "x/wall/displacement"),
+                               read_dataset(split / "results" / "case.h5", "x/wall/displacement")),
+            1e-5);
+  const CommandResult mixed = [&] {
+    edit(split / "case.yaml", "working_directory: wall_b, substeps: 2}",
+         "working_directory: wall_b, substeps: 3}");
+    return run_cocopp("check " + (split / "case.yaml").string());
+  }();
+  EXPECT_NE(mixed.output.find("member 'wall_b' of group 'wall' takes 3 substeps a time step, "
+                              "'wall_a' 2: the members of a group share the window's substeps"),
+            std::string::npos)
+      << mixed.output;
+  fs::remove_all(one);
+  fs::remove_all(split);
+}
+
 /// `cocopp check` (and run) of the split example with one edit; the message it gives.
 std::string error_after(const std::string& tag, const std::string& from, const std::string& to,
                         const std::string& command = "run -q") {
