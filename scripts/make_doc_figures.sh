@@ -21,6 +21,7 @@ load_driven_wire=(--set mesh.wire_model=axisymmetric
 figures=(
   "stability|the tube solvers|2 min|docs/stability.md"
   "tube_side_by_side|the tube solvers|10 s|docs/coupling.md"
+  "tube_substeps|the tube solvers|10 s|docs/coupling.md"
   "tube_flow_calculix|CalculiX|15 s|docs/solver-wrappers-calculix.md"
   "openfoam_wedge|OpenFOAM|1 min|docs/solver-wrappers-openfoam.md"
   "wire_drawing_bench|OpenFOAM and CalculiX|20 min|docs/wire-drawing.md"
@@ -50,6 +51,12 @@ make_tube_side_by_side() {  # serial against parallel coupling: error against ru
   local example="$root/examples/tube/bench"
   "$cocopp" bench --quiet "$example/side_by_side.yaml"
   publish "$example/results/side_by_side/bench.png" tube-side-by-side.png
+}
+
+make_tube_substeps() {  # each solver at its own time step: error against run time
+  local example="$root/examples/tube/bench"
+  "$cocopp" bench --quiet "$example/substeps.yaml"
+  publish "$example/results/substeps/bench.png" tube-substeps.png
 }
 
 make_tube_flow_calculix() {

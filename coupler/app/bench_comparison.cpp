@@ -37,9 +37,10 @@ Results read_results(const fs::path& file) {
 
 /// ||v - r|| / ||r|| over every model part and every time step both runs have, after
 /// `first_after` (a run continuing a saved state: its own steps); NaN if they share no step or
-/// do not have the same parts and sizes.
+/// do not have the same parts and sizes. The reference may take `every` steps to one of the
+/// run's (a finer delta_t): its step `every` s is the run's step s.
 double relative_error(const Results& v, const Fields& variant, const Results& ref,
-                      const Fields& reference, int first_after) {
+                      const Fields& reference, int first_after, int every) {
   if (reference.empty() || variant.size() != reference.size()) return kNaN;
   std::map<int, std::size_t> reference_row;
   for (std::size_t i = 0; i < ref.steps.size(); ++i) reference_row[ref.steps[i]] = i;
@@ -52,7 +53,7 @@ double relative_error(const Results& v, const Fields& variant, const Results& re
     const std::size_t row_size = r.row_size();
     for (std::size_t i = 0; i < v.steps.size(); ++i) {
       if (v.steps[i] <= first_after) continue;
-      const auto row = reference_row.find(v.steps[i]);
+      const auto row = reference_row.find(v.steps[i] * every);
       if (row == reference_row.end()) continue;
       const std::size_t a = i * row_size, b = row->second * row_size;
       if (a + row_size > f.values.size() || b + row_size > r.values.size()) continue;
@@ -79,14 +80,19 @@ void compute_errors(BenchRow& row, const fs::path& results_file, const Results& 
     return add_note(row, e.what());
   }
   if (v.steps.empty()) return;
-  if (!(std::abs(v.delta_t - reference.delta_t) <= 1e-12 * std::abs(reference.delta_t)))
-    return add_note(row, fmt::format("delta_t {:g} differs from the reference's {:g}: no error",
+  // A reference at a finer step (a fully resolved run) is compared at the run's steps.
+  const double ratio = v.delta_t / reference.delta_t;
+  const int every = static_cast<int>(std::lround(ratio));
+  if (every < 1 || !(std::abs(ratio - every) <= 1e-9 * ratio))
+    return add_note(row, fmt::format("delta_t {:g} is not a whole multiple of the reference's "
+                                     "{:g}: no error",
                                      v.delta_t, reference.delta_t));
   // A run continuing a saved state: the steps before it are the base run's in every file.
   const int first_after = from_state ? v.restarted_after_step : std::numeric_limits<int>::min();
   row.displacement_error =
-      relative_error(v, v.displacement, reference, reference.displacement, first_after);
-  row.pressure_error = relative_error(v, v.pressure, reference, reference.pressure, first_after);
+      relative_error(v, v.displacement, reference, reference.displacement, first_after, every);
+  row.pressure_error =
+      relative_error(v, v.pressure, reference, reference.pressure, first_after, every);
   if (std::isnan(row.displacement_error)) add_note(row, "no step in common with reference");
 }
 

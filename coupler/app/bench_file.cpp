@@ -36,8 +36,20 @@ std::vector<SolverInput> read_solver_inputs(const Settings& s) {
   return inputs;
 }
 
+/// `solver_wrappers: {<name>: {<key>: <value>, ...}}`; the names are checked against the base
+/// case's solver wrappers when the runs are prepared.
+YAML::Node read_solver_wrappers(const Settings& s) {
+  const YAML::Node changes = raw_mapping(s, "solver_wrappers");
+  for (const auto& entry : changes)
+    if (!entry.second.IsMap())
+      s.child("solver_wrappers")
+          .fail(entry.first.as<std::string>(),
+                "must be a mapping: keys of the solver wrapper and their values");
+  return changes;
+}
+
 Changes read_changes(const Settings& s) {
-  return {raw_mapping(s, "settings"), read_solver_inputs(s)};
+  return {raw_mapping(s, "settings"), read_solver_inputs(s), read_solver_wrappers(s)};
 }
 
 /// A case or variant name: it becomes a directory name and a table entry.
@@ -87,6 +99,10 @@ void read_reference(const Settings& root, BenchFile& b) {
       reference.fail("results", "no such file: " + b.reference_results.string());
     if (reference.has("tolerance"))
       reference.fail("tolerance", "give either 'results' or 'tolerance', not both");
+    if (reference.has("settings"))
+      reference.fail("settings",
+                     "changes the reference cocopp bench computes; a given one is "
+                     "as it was run");
   } else if (reference.has("convergence_criterion")) {
     // Where solver noise sets a floor, a relative tolerance on the step's first residual is
     // either unreachable or loose: the user then states the reference's criterion outright.
@@ -104,6 +120,8 @@ void read_reference(const Settings& root, BenchFile& b) {
         YAML::Load(fmt::format("{{type: relative_norm, tolerance: {:.17g}}}",
                                reference.get_in_range("tolerance", 1e-10, Range::positive())));
   }
+  if (b.reference == ReferenceKind::kComputed)
+    b.reference_changes.settings = raw_mapping(reference, "settings");
 }
 
 }  // namespace

@@ -20,6 +20,9 @@ inline constexpr const char* kReferenceName = "reference";
 struct Changes {
   YAML::Node settings;  ///< merged into the base case's settings (may be null)
   std::vector<SolverInput> solver_inputs;
+  /// `{<solver wrapper name>: {<key>: <value>}}`, merged into the base case's solver wrapper
+  /// of that name (its `substeps`, say; may be null)
+  YAML::Node solver_wrappers;
 };
 
 struct Variant {
@@ -43,7 +46,10 @@ struct BenchFile {
   ReferenceKind reference = ReferenceKind::kComputed;
   fs::path reference_results;      ///< kGiven
   YAML::Node reference_criterion;  ///< kComputed: what the reference converges to
-  Changes changes;                 ///< applied to every run, the references included
+  /// kComputed: the reference's own `settings` (a finer delta_t: a fully resolved run, which
+  /// the runs are compared with at their own steps)
+  Changes reference_changes;
+  Changes changes;  ///< applied to every run, the references included
   std::vector<BenchCase> cases;
   std::vector<Variant> variants;
   /// Every run continues the base case's saved state (results/case.state.h5) with its own

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "core/case/settings.hpp"
+#include "core/case/suggest.hpp"
 #include "coupler/app/case.hpp"
 #include "coupler/results/run_files.hpp"
 
@@ -85,6 +86,35 @@ void check_working_directories(const YAML::Node& base_case, const fs::path& base
   }
 }
 
+/// The name a solver wrapper of a case goes by: its `name`, or its type.
+std::string wrapper_name(const YAML::Node& wrapper) {
+  if (wrapper["name"]) return wrapper["name"].as<std::string>();
+  return wrapper["type"] ? wrapper["type"].as<std::string>() : std::string();
+}
+
+/// The base case's solver wrappers with the `solver_wrappers` changes (of the bench file, the
+/// case and the run, in that order) merged into the one of each name.
+YAML::Node changed_solver_wrappers(const BenchFile& bench, const YAML::Node& wrappers,
+                                   const std::vector<const Changes*>& all_changes) {
+  YAML::Node out = YAML::Clone(wrappers);
+  if (!out.IsSequence()) return out;  // the case's own check reports it
+  std::vector<std::string> names;
+  for (const auto& wrapper : out) names.push_back(wrapper_name(wrapper));
+  for (const Changes* changes : all_changes)
+    for (const auto& entry : changes->solver_wrappers) {
+      const std::string name = entry.first.as<std::string>();
+      const auto found = std::find(names.begin(), names.end(), name);
+      if (found == names.end())
+        throw CaseError(fmt::format(
+            "{}: solver_wrappers: the base case has no solver wrapper named '{}'{}; its solver "
+            "wrappers are {}",
+            bench.file.string(), name, did_you_mean(name, names), join(names)));
+      const auto index = static_cast<std::size_t>(found - names.begin());
+      out[index] = deep_merge(out[index], entry.second);
+    }
+  return out;
+}
+
 std::vector<SolverInput> solver_inputs(const BenchFile& bench, const BenchCase& bench_case,
                                        const Changes& run) {
   std::vector<SolverInput> all = bench.changes.solver_inputs;
@@ -104,6 +134,8 @@ PlannedRun prepare_run(const BenchFile& bench, const YAML::Node& base_case,
   copy_case_directory(bench.base_case.parent_path(), dir, paths_not_to_copy(bench, base_case));
   YAML::Node c = YAML::Clone(base_case);
   c["coupled_solver"] = coupled_solver;
+  c["solver_wrappers"] = changed_solver_wrappers(bench, base_case["solver_wrappers"],
+                                                 {&bench.changes, &bench_case.changes, &run});
   // Nested, not by assigning to a YAML::Node: that would write through into base_case.
   YAML::Node s = deep_merge(deep_merge(deep_merge(base_case["settings"], bench.changes.settings),
                                        bench_case.changes.settings),
@@ -155,7 +187,7 @@ std::vector<PlannedRun> prepare_runs(const BenchFile& bench) {
     if (bench.reference == ReferenceKind::kComputed)
       runs.push_back(prepare_run(bench, base, c, kReferenceName,
                                  reference_coupled_solver(base["coupled_solver"], bench),
-                                 Changes{}));
+                                 bench.reference_changes));
     for (const Variant& v : bench.variants)
       runs.push_back(prepare_run(bench, base, c, v.name,
                                  merge_coupled_solver(base["coupled_solver"], v.coupled_solver),

@@ -158,6 +158,46 @@ variants: [{name: a}]
   fs::remove_all(dir);
 }
 
+/// Substeps in the bench: variants change a solver wrapper (`solver_wrappers`), and the
+/// reference runs at a finer delta_t (its `settings`), compared at the variants' steps.
+/// Windows of 4 substeps on both solvers are the reference's own discrete problem (both at a
+/// quarter of the step): within the coupling tolerance of it.
+TEST(CocoppBench, SubstepVariantsAgainstAFinerReference) {
+  const fs::path dir = bench_directory("bench_substeps", R"(base_case: flow_structure/case.yaml
+reference:
+  convergence_criterion: {type: absolute_norm, tolerance: 1.0e-12}
+  settings: {delta_t: 2.5e-5, number_of_timesteps: 40}
+settings: {number_of_timesteps: 10}
+variants:
+  - name: both_at_the_step
+  - name: windows_of_4
+    solver_wrappers: {flow: {substeps: 4}, structure: {substeps: 4}}
+    coupled_solver:
+      convergence_criterion:
+        type: or
+        criteria: [{type: absolute_norm, tolerance: 1.0e-12}, {type: iteration_limit, maximum: 100}]
+)");
+  auto result = run_cocopp("bench --no-plot " + (dir / "bench.yaml").string());
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const nlohmann::json bench = read_json(dir / "results" / "bench" / "bench.json");
+  EXPECT_LT(run_named(bench, "windows_of_4")["displacement_error"].get<double>(), 1e-8);
+  EXPECT_GT(run_named(bench, "both_at_the_step")["displacement_error"].get<double>(), 1e-2);
+  const std::string written = read_text(dir / "results" / "bench" / "windows_of_4" / "case.yaml");
+  EXPECT_NE(written.find("substeps: 4"), std::string::npos) << written;
+
+  write_text(dir / "bench.yaml", R"(base_case: flow_structure/case.yaml
+variants:
+  - {name: a, solver_wrappers: {flw: {substeps: 4}}}
+)");
+  result = run_cocopp("bench " + (dir / "bench.yaml").string());
+  EXPECT_NE(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("solver_wrappers: the base case has no solver wrapper named "
+                               "'flw'; did you mean 'flow'?"),
+            std::string::npos)
+      << result.output;
+  fs::remove_all(dir);
+}
+
 TEST(CocoppBench, InvalidFileNamesTheKey) {
   const fs::path dir = bench_directory("bench_invalid", R"(base_case: flow_structure/case.yaml
 variants:
