@@ -424,15 +424,7 @@ const Interface& ProcessSolverWrapper::solve(const Interface& input) {
                     name_, input.describe(), input_interface_.describe()));
   ++iteration_;
   const Frame request = protocol::encode_solve(input.data().data(), input.size());
-  std::vector<double> output;
-  if (reporting_convergence_) {
-    auto data = call("solve", &request, MessageType::kDataConverged, timeout_,
-                     protocol::decode_data_converged);
-    output = std::move(data.values);
-    converged_at_first_iteration_ = data.converged;
-  } else {
-    output = call("solve", &request, MessageType::kData, timeout_, protocol::decode_data);
-  }
+  const std::vector<double> output = send_solve(request);
   if (static_cast<Eigen::Index>(output.size()) != output_interface_.size())
     fail(
         fmt::format("solver '{}' returned {} values from solve {}; its output interface has {} "
@@ -441,6 +433,15 @@ const Interface& ProcessSolverWrapper::solve(const Interface& input) {
                     output_interface_.describe()));
   output_interface_.set_data(Eigen::Map<const Eigen::VectorXd>(output.data(), output.size()));
   return output_interface_;
+}
+
+std::vector<double> ProcessSolverWrapper::send_solve(const Frame& request) {
+  if (!reporting_convergence_)
+    return call("solve", &request, MessageType::kData, timeout_, protocol::decode_data);
+  auto data = call("solve", &request, MessageType::kDataConverged, timeout_,
+                   protocol::decode_data_converged);
+  converged_at_first_iteration_ = data.converged;
+  return std::move(data.values);
 }
 
 Eigen::MatrixXd ProcessSolverWrapper::solve_substeps(const Eigen::MatrixXd& inputs) {
@@ -452,15 +453,7 @@ Eigen::MatrixXd ProcessSolverWrapper::solve_substeps(const Eigen::MatrixXd& inpu
   ++iteration_;
   // Column-major: one substep's input after the other, as SOLVE carries them.
   const Frame request = protocol::encode_solve(inputs.data(), std::size_t(inputs.size()));
-  std::vector<double> output;
-  if (reporting_convergence_) {
-    auto data = call("solve", &request, MessageType::kDataConverged, timeout_,
-                     protocol::decode_data_converged);
-    output = std::move(data.values);
-    converged_at_first_iteration_ = data.converged;
-  } else {
-    output = call("solve", &request, MessageType::kData, timeout_, protocol::decode_data);
-  }
+  const std::vector<double> output = send_solve(request);
   const Eigen::Index rows = output_interface_.size();
   if (static_cast<Eigen::Index>(output.size()) != rows * substeps_)
     fail(

@@ -97,6 +97,8 @@ class ProcessSolverWrapper : public SolverWrapper {
   void wait_for_hello();
   void ensure_running() const;
   void build_interfaces(const sdk::InterfaceDescription& description);
+  /// Send SOLVE and take its DATA (or DATA_CONVERGED, whose flag it keeps): the output values.
+  std::vector<double> send_solve(const protocol::Frame& request);
 
   /// Send `request` (or, if null, only wait), check that the reply is `expected_reply` and
   /// return decode(reply). Every failure ends in fail().

@@ -189,12 +189,20 @@ class Server {
       channel_.send(protocol::encode_rejected(e.what()));
       return;
     }
+    check_output_size(output);
+    send_output(output, solver_.converged_at_first_iteration());
+  }
+
+  void check_output_size(const std::vector<double>& output) const {
     if (output.size() != output_size_)
       throw std::runtime_error("solve() returned " + std::to_string(output.size()) +
                                " values; the interface description implies " +
                                std::to_string(output_size_));
-    channel_.send(reporting_convergence_ ? protocol::encode_data_converged(
-                                               output, solver_.converged_at_first_iteration())
+  }
+
+  /// DATA, or DATA_CONVERGED after REPORT_CONVERGENCE.
+  void send_output(const std::vector<double>& output, bool converged) {
+    channel_.send(reporting_convergence_ ? protocol::encode_data_converged(output, converged)
                                          : protocol::encode_data(output));
   }
 
@@ -226,16 +234,12 @@ class Server {
         channel_.send(protocol::encode_rejected(e.what()));
         return;
       }
-      if (substep_output.size() != output_size_)
-        throw std::runtime_error("solve() returned " + std::to_string(substep_output.size()) +
-                                 " values; the interface description implies " +
-                                 std::to_string(output_size_));
+      check_output_size(substep_output);
       output.insert(output.end(), substep_output.begin(), substep_output.end());
       converged = converged && solver_.converged_at_first_iteration();
       if (j < substeps_) solver_.finalize_step();
     }
-    channel_.send(reporting_convergence_ ? protocol::encode_data_converged(output, converged)
-                                         : protocol::encode_data(output));
+    send_output(output, converged);
   }
 
   // Errors in the description are the solver's: report them here, where they are made.

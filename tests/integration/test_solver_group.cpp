@@ -9,18 +9,13 @@
 #include <cmath>
 
 #include "tests/integration/run_helpers.hpp"
+#include "tests/integration/variant_runs.hpp"
 #include "tests/support/temporary_directory.hpp"
 
 using namespace cocopp::testing;
 namespace fs = std::filesystem;
 
 namespace {
-
-int total_iterations(const nlohmann::json& summary) {
-  int total = 0;
-  for (const auto& iterations : summary["iterations_per_step"]) total += iterations.get<int>();
-  return total;
-}
 
 /// max |a - b| / max |a| over two runs' datasets.
 double largest_difference(const std::vector<double>& a, const std::vector<double>& b) {
