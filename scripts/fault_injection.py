@@ -3,7 +3,7 @@
 
 Every trial runs the flexible tube (examples/tube/flow_structure, longer) in a fresh directory
 and injects one fault: a solver killed, stopped or signalled at a random moment, the coupler
-signalled or killed, a solver that breaks the protocol (scripts/fault_solver.py), two runs of
+signalled or killed (and then restarted), a solver that breaks the protocol (scripts/fault_solver.py), two runs of
 one case at once, links planted at the names cocopp writes, a results directory that fills up.
 Then it checks what a user would check:
 
@@ -232,6 +232,28 @@ def coupler_kill9(trial, rng):
     return judge(trial, code, hung, trial.output(), killed_coupler=True)
 
 
+def coupler_kill9_restart(trial, rng):
+    """Killed at a random moment (often inside a flush of the results file) with a state saved
+    every 10 steps; `run --restart` must then complete the case."""
+    trial.write_case(case_text(state_interval=10))
+    trial.start()
+    trial.wait_for_step(rng.randint(11, STEPS // 2))
+    time.sleep(rng.uniform(0, 0.01))
+    trial.process.kill()
+    trial.wait()
+    if orphans(trial):
+        return dict(clean=0, crash=0, hang=0, orphan=1, data_lost=0)
+    trial.output_path = os.path.join(trial.dir, "restart.out")
+    trial.process = subprocess.Popen([trial.binary, "run", "--restart", trial.case],
+                                     stdout=open(trial.output_path, "w"),
+                                     stderr=subprocess.STDOUT, start_new_session=True)
+    code, hung = trial.wait()
+    result = judge(trial, code, hung, trial.output(), expect_completed=True)
+    if result["clean"] and trial.results_steps() != STEPS:
+        result.update(clean=0, data_lost=1)
+    return result
+
+
 ABUSES = ["garbage_type", "truncated", "huge_length", "wrong_count", "nan", "exit",
           "bad_version", "extra_bytes", "error_flood", "reply_twice"]
 
@@ -319,6 +341,7 @@ SCENARIOS = {
     "solver_signals": solver_signals,
     "coupler_signals": coupler_signals,
     "coupler_kill9": coupler_kill9,
+    "coupler_kill9_restart": coupler_kill9_restart,
     "protocol_abuse": protocol_abuse,
     "concurrent_runs": concurrent_runs,
     "planted_links": planted_links,

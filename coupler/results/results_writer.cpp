@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "core/data/variables.hpp"
+#include "coupler/results/hdf5_copy.hpp"
 #include "coupler/results/results_reader.hpp"
 
 #ifndef COCOPP_VERSION
@@ -151,21 +152,34 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& file, const RunDescrip
   check_continuable(run, continue_after_step);
   // check_continuable left rows_ at the rows to keep: the steps up to continue_after_step.
   const QuietErrors quiet;
+  // A run killed in a flush can leave the file's metadata behind its data: it still reads, but
+  // the first flush into it fails ("addr overflow"). The kept steps go into a new file, which
+  // replaces the old one once it has everything this run needs.
+  std::filesystem::path fresh = path_;
+  fresh += ".continued";
   try {
-    file_ = H5Handle(checked(H5Fopen(path_.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), "opening the file"),
+    copy_kept_rows(fresh);
+    file_ = H5Handle(checked(H5Fopen(fresh.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), "opening the copy"),
                      H5Fclose);
     x_blocks_ = open_interface("x", x);
     y_blocks_ = open_interface("y", y);
     if (!watchpoints.parts().empty())
       watchpoint_blocks_ = open_interface("watchpoints", watchpoints);
     open_step_series();
-    // Only now that everything fits: the file changes.
     mark_continued(continue_after_step);
-    truncate();
     flush();
-  } catch (const H5Error& error) {
+    std::error_code error;
+    std::filesystem::rename(fresh, path_, error);
+    if (error) throw H5Error("replacing it by " + fresh.string() + " failed: " + error.message());
+  } catch (...) {
     release();
-    fail(error);
+    std::error_code ignored;
+    std::filesystem::remove(fresh, ignored);
+    try {
+      throw;
+    } catch (const H5Error& error) {
+      fail(error);
+    }
   }
 }
 
@@ -192,6 +206,19 @@ void ResultsWriter::check_continuable(const RunDescription& run, int step) {
   if (offsets.size() < std::size_t(rows_) || counts.size() < std::size_t(rows_))
     mismatch("its residuals hold fewer steps than its step list");
   norms_written_ = static_cast<hsize_t>(offsets[rows_ - 1] + counts[rows_ - 1]);
+}
+
+void ResultsWriter::copy_kept_rows(const std::filesystem::path& copy) const {
+  try {
+    copy_file(path_, copy,
+              [&](const std::string& dataset, hsize_t) {
+                return dataset == "residuals/norms" ? norms_written_ : static_cast<hsize_t>(rows_);
+              },
+              {"unfinished_step"});
+  } catch (const H5Error& error) {
+    throw H5Error(std::string("copying its steps up to the saved state into a new file: ") +
+                  error.what() + " (the file is unchanged)");
+  }
 }
 
 void ResultsWriter::mark_continued(int step) {
@@ -248,23 +275,6 @@ void ResultsWriter::open_step_series() {
   if (steps_.solver_times.row_shape != std::vector<hsize_t>{solver_count_})
     throw std::runtime_error("results file '" + path_.string() + "' was written for " +
                              std::to_string(steps_.solver_times.row_shape.at(0)) + " solvers");
-}
-
-void ResultsWriter::truncate() {
-  const auto cut = [](const Series& series, hsize_t rows) {
-    std::vector<hsize_t> extent{rows};
-    extent.insert(extent.end(), series.row_shape.begin(), series.row_shape.end());
-    checked(H5Dset_extent(series.dataset.get(), extent.data()),
-            "truncating " + object_name(series.dataset.get()));
-  };
-  const auto rows = static_cast<hsize_t>(rows_);
-  for (const auto* blocks : {&x_blocks_, &y_blocks_, &watchpoint_blocks_})
-    for (const auto& b : *blocks) cut(b.series, rows);
-  for (const Series* series :
-       {&steps_.step, &steps_.time, &steps_.iterations, &steps_.converged, &steps_.wall_time,
-        &steps_.coupler_time, &steps_.solver_times, &steps_.offset, &steps_.count})
-    cut(*series, rows);
-  cut(steps_.norms, norms_written_);
 }
 
 ResultsWriter::~ResultsWriter() {

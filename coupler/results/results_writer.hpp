@@ -88,12 +88,12 @@ class ResultsWriter {
 
   void create_file();
   void check_continuable(const RunDescription& run, int step);
+  /// Writes `copy`: the file with rows_ rows (norms_written_ residual norms), no unfinished step.
+  void copy_kept_rows(const std::filesystem::path& copy) const;
   void mark_continued(int step);
   std::vector<BlockSeries> open_interface(const char* name, const Interface& interface);
   void open_step_series();
   Series open_series(const std::string& name);
-  /// Drops every row after the first rows_ (and the residual norms after norms_written_).
-  void truncate();
   void write_run_attributes(const RunDescription& run);
   std::vector<BlockSeries> create_interface(const char* name, const char* role,
                                             const Interface& interface);

@@ -431,6 +431,53 @@ TEST_F(ResultsWriterTest, AContinuedRunReplacesTheUnfinishedStepOfTheRunItContin
   EXPECT_EQ(f.dataset("unfinished_step/residual_norms").values, (std::vector<double>{3.0}));
 }
 
+/// The link names of `group` in the order they were created.
+std::vector<std::string> in_creation_order(const std::filesystem::path& file,
+                                           const std::string& group) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  H5G_info_t info{};
+  H5Gget_info_by_name(f, group.c_str(), &info, H5P_DEFAULT);
+  std::vector<std::string> names;
+  for (hsize_t i = 0; i < info.nlinks; ++i) {
+    char name[64] = {};
+    H5Lget_name_by_idx(f, group.c_str(), H5_INDEX_CRT_ORDER, H5_ITER_INC, i, name, sizeof name,
+                       H5P_DEFAULT);
+    names.emplace_back(name);
+  }
+  H5Fclose(f);
+  return names;
+}
+
+// A continued file is written anew from the kept steps (a run killed in a flush can leave
+// metadata that reads but cannot be written to): everything else is as the first run wrote it.
+TEST_F(ResultsWriterTest, AContinuedFileKeepsTheFirstRunsAttributesUnitsAndOrder) {
+  const auto file = dir_ / "run.h5";
+  write_run(file, 5, "");
+  const auto order = in_creation_order(file, "x");
+  ASSERT_EQ(order, (std::vector<std::string>{"wall", "inlet"}));  // not name order
+  const ResultsReader before(file);
+  Interfaces interfaces = make_interfaces();
+  {
+    ResultsWriter writer(file, make_run(5), interfaces.x, interfaces.y, 3);
+    EXPECT_FALSE(std::filesystem::exists(dir_ / "run.h5.continued"));
+    writer.close("completed", "done");
+  }
+  const ResultsReader after(file);
+  EXPECT_EQ(in_creation_order(file, "x"), order);
+  EXPECT_EQ(after.steps(), (std::vector<int>{1, 2, 3}));
+  for (const char* name : {"cocopp_version", "case_file", "coupled_solver", "created"})
+    EXPECT_EQ(after.string("/", name), before.string("/", name)) << name;
+  EXPECT_EQ(after.strings("/", "solver_names"), before.strings("/", "solver_names"));
+  EXPECT_EQ(after.number("/", "delta_t"), before.number("/", "delta_t"));
+  EXPECT_EQ(after.string("steps/time", "unit"), "s");
+  EXPECT_EQ(after.dataset("x/wall/coordinates").values,
+            before.dataset("x/wall/coordinates").values);
+  const std::vector<double> converged = before.dataset("steps/converged").values;
+  ASSERT_EQ(converged.size(), 5u);
+  EXPECT_EQ(after.dataset("steps/converged").values,
+            std::vector<double>(converged.begin(), converged.begin() + 3));
+}
+
 TEST_F(ResultsWriterTest, ContinuingAFileThatDoesNotFitSaysWhy) {
   const auto file = dir_ / "run.h5";
   write_run(file, 3);
