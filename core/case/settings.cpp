@@ -131,11 +131,23 @@ struct Settings::Document {
 };
 
 Settings Settings::load_file(const std::filesystem::path& file) {
-  std::ifstream in(file);
+  // A case file is a few kilobytes; a device, a pipe or a huge file would be read whole first.
+  std::error_code error;
+  const auto status = std::filesystem::status(file, error);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    throw CaseError(file.string() + ": not a regular file (" +
+                    (std::filesystem::is_directory(status) ? "a directory" : "a device or a pipe") +
+                    "): give the path of the case's YAML or JSON file");
+  std::ifstream in(file, std::ios::binary);
   if (!in) throw CaseError(file.string() + ": cannot open the file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return load_string(text.str(), file.string());
+  std::string text(kMaxCaseFileBytes + 1, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  if (text.size() > kMaxCaseFileBytes)
+    throw CaseError(file.string() + ": larger than the " + std::to_string(kMaxCaseFileBytes >> 20) +
+                    " MiB a case file may have: is it the case file? (solver inputs and meshes "
+                    "belong in the solvers' working directories)");
+  return load_string(text, file.string());
 }
 
 Settings Settings::load_string(const std::string& text, const std::string& file_name) {

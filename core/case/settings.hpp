@@ -43,7 +43,10 @@ struct Range {
 
 class Settings {
  public:
-  /// Parse a YAML or JSON file. Throws CaseError on a syntax error (with file and line).
+  /// A case file larger than this is refused before it is parsed.
+  static constexpr std::size_t kMaxCaseFileBytes = std::size_t(16) << 20;
+  /// Parse a YAML or JSON file. Throws CaseError on a syntax error (with file and line), and on
+  /// a file that is not a regular one or larger than kMaxCaseFileBytes.
   static Settings load_file(const std::filesystem::path& file);
   /// Parse text (for tests); `file_name` is used in messages.
   static Settings load_string(const std::string& text, const std::string& file_name);

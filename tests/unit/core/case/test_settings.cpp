@@ -1,6 +1,9 @@
 // Case-file settings: values, defaults, and errors that name the file, line and key.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
 #include "core/case/settings.hpp"
 #include "core/case/suggest.hpp"
 
@@ -234,4 +237,27 @@ TEST(Settings, AMissingRequiredKeyPointsAtItsMisspelling) {
             std::string::npos);
   EXPECT_EQ(error_of([&] { solver.required<double>("omega"); }).find("misspelling"),
             std::string::npos);
+}
+
+// A case file is read whole before it is parsed: a device, a directory or a huge file is
+// refused first (`cocopp check /dev/zero` once grew to gigabytes).
+TEST(Settings, OnlyARegularFileOfReasonableSizeIsRead) {
+  EXPECT_NE(error_of([] {
+              Settings::load_file("/dev/zero");
+            }).find("/dev/zero: not a regular file (a device or a pipe)"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { Settings::load_file("/tmp"); }).find("not a regular file (a directory)"),
+            std::string::npos);
+  const std::filesystem::path big =
+      std::filesystem::temp_directory_path() / "cocopp_test_big_case.yaml";
+  {
+    std::ofstream out(big);
+    out << "settings: {delta_t: 0.001}\n";
+  }
+  std::filesystem::resize_file(big, Settings::kMaxCaseFileBytes + 1);  // sparse: no disk used
+  EXPECT_NE(error_of([&] { Settings::load_file(big); }).find("larger than the 16 MiB"),
+            std::string::npos);
+  std::filesystem::resize_file(big, 27);
+  EXPECT_EQ(Settings::load_file(big).child("settings").required<double>("delta_t"), 0.001);
+  std::filesystem::remove(big);
 }
