@@ -30,6 +30,28 @@ std::vector<std::string> links_in_order(hid_t group) {
   return names;
 }
 
+/// A fresh group (or file) creation list with the link creation order `source`'s has. (The
+/// source's own list carries the addresses of its link storage: a group created with it points
+/// into the other file.)
+H5Handle creation_order_like(hid_t source, hid_t fresh_class) {
+  unsigned flags = 0;
+  checked(H5Pget_link_creation_order(source, &flags), "H5Pget_link_creation_order");
+  H5Handle properties(checked(H5Pcreate(fresh_class), "H5Pcreate"), H5Pclose);
+  checked(H5Pset_link_creation_order(properties.get(), flags), "H5Pset_link_creation_order");
+  return properties;
+}
+
+/// A fresh dataset creation list with `source`'s chunks (none: contiguous).
+H5Handle chunks_like(hid_t source) {
+  H5Handle properties(checked(H5Pcreate(H5P_DATASET_CREATE), "H5Pcreate"), H5Pclose);
+  if (checked(H5Pget_layout(source), "H5Pget_layout") != H5D_CHUNKED) return properties;
+  const int rank = checked(H5Pget_chunk(source, 0, nullptr), "H5Pget_chunk");
+  std::vector<hsize_t> chunk(static_cast<std::size_t>(rank));
+  checked(H5Pget_chunk(source, rank, chunk.data()), "H5Pget_chunk");
+  checked(H5Pset_chunk(properties.get(), rank, chunk.data()), "H5Pset_chunk");
+  return properties;
+}
+
 H5Handle memory_type_of(hid_t file_type) {
   return {checked(H5Tget_native_type(file_type, H5T_DIR_DEFAULT), "H5Tget_native_type"), H5Tclose};
 }
@@ -93,7 +115,8 @@ void copy_dataset(hid_t from, hid_t parent, const std::string& name, const std::
   const std::string what = "copying " + path;
   const H5Handle source(checked(H5Dopen2(from, name.c_str(), H5P_DEFAULT), what), H5Dclose);
   const H5Handle file_type(checked(H5Dget_type(source.get()), what), H5Tclose);
-  const H5Handle properties(checked(H5Dget_create_plist(source.get()), what), H5Pclose);
+  const H5Handle source_properties(checked(H5Dget_create_plist(source.get()), what), H5Pclose);
+  const H5Handle properties = chunks_like(source_properties.get());
   const H5Handle source_space(checked(H5Dget_space(source.get()), what), H5Sclose);
   const int rank = checked(H5Sget_simple_extent_ndims(source_space.get()), what);
   std::vector<hsize_t> dims(static_cast<std::size_t>(rank)), max_dims(dims.size());
@@ -132,7 +155,9 @@ void copy_members(hid_t from, hid_t to, const std::string& prefix, const RowsToK
                           H5Oclose);
     switch (H5Iget_type(object.get())) {
       case H5I_GROUP: {
-        const H5Handle properties(checked(H5Gget_create_plist(object.get()), path), H5Pclose);
+        const H5Handle source_properties(checked(H5Gget_create_plist(object.get()), path),
+                                         H5Pclose);
+        const H5Handle properties = creation_order_like(source_properties.get(), H5P_GROUP_CREATE);
         const H5Handle group(
             checked(H5Gcreate2(to, name.c_str(), H5P_DEFAULT, properties.get(), H5P_DEFAULT),
                     "creating group " + path),
@@ -156,8 +181,9 @@ void copy_file(const std::filesystem::path& from, const std::filesystem::path& t
                const RowsToKeep& keep, const std::vector<std::string>& skip) {
   const H5Handle source(checked(H5Fopen(from.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "opening"),
                         H5Fclose);
-  const H5Handle properties(checked(H5Fget_create_plist(source.get()), "H5Fget_create_plist"),
-                            H5Pclose);
+  const H5Handle source_properties(
+      checked(H5Fget_create_plist(source.get()), "H5Fget_create_plist"), H5Pclose);
+  const H5Handle properties = creation_order_like(source_properties.get(), H5P_FILE_CREATE);
   const H5Handle copy(
       checked(H5Fcreate(to.c_str(), H5F_ACC_TRUNC, properties.get(), H5P_DEFAULT), "creating"),
       H5Fclose);

@@ -476,6 +476,14 @@ TEST_F(ResultsWriterTest, AContinuedFileKeepsTheFirstRunsAttributesUnitsAndOrder
   ASSERT_EQ(converged.size(), 5u);
   EXPECT_EQ(after.dataset("steps/converged").values,
             std::vector<double>(converged.begin(), converged.begin() + 3));
+  // A copy is continued like the first file (its groups' link storage is its own: a copy made
+  // with the source's creation lists pointed into the source and could not be read again).
+  {
+    ResultsWriter writer(file, make_run(5), interfaces.x, interfaces.y, 2);
+    writer.close("completed", "again");
+  }
+  EXPECT_EQ(ResultsReader(file).steps(), (std::vector<int>{1, 2}));
+  EXPECT_EQ(in_creation_order(file, "x"), order);
 }
 
 TEST_F(ResultsWriterTest, ContinuingAFileThatDoesNotFitSaysWhy) {
