@@ -178,7 +178,8 @@ void CaseCheck::run() const {
   const double case_delta_t = control_dict.number("deltaT");
   if (std::abs(case_delta_t - delta_t) > 1e-9 * std::abs(delta_t))
     throw CaseError(fmt::format(
-        "{}: {}deltaT {} differs from the coupler's time step delta_t {}: they must be equal",
+        "{}: {}deltaT {} differs from the coupler's time step {} (delta_t, divided by the "
+        "solver's substeps): they must be equal",
         control_dict.where("deltaT"), solver, case_delta_t, delta_t));
   if (const auto adjust = control_dict.value("adjustTimeStep"); adjust && !is_false(*adjust))
     throw CaseError(

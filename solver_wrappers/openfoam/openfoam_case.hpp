@@ -46,7 +46,7 @@ std::vector<std::string> read_boundary_patches(const std::filesystem::path& boun
 struct CaseCheck {
   std::filesystem::path case_directory;
   std::vector<std::string> interface_patches;
-  double delta_t = 0.0;  ///< the coupler's time step
+  double delta_t = 0.0;  ///< the fluid's time step: the coupler's over the substeps
   std::string solver;    ///< "solver 'flow': ", prefixed to messages
   int cores = 1;         ///< > 1: system/decomposeParDict must split the mesh into as many parts
   void run() const;

@@ -70,7 +70,8 @@ class OpenFoamSolverWrapper : public ProcessSolverWrapper {
 
   void check() const override {
     ProcessSolverWrapper::check();
-    openfoam::CaseCheck{working_directory(), boundary_names_, delta_t_,
+    // With substeps, the fluid's own time step is the coupler's divided by them.
+    openfoam::CaseCheck{working_directory(), boundary_names_, delta_t_ / substeps(),
                         "solver '" + name() + "': ", cores_}
         .run();
   }

@@ -26,7 +26,10 @@ enum class Command : Foam::label {
   kFinalize,
   kExit,  ///< the coupler stopped before initializing
   kSaveRestart,
-  kReportConvergence
+  kReportConvergence,
+  kSaveState,  ///< substeps: a window's start
+  kRestoreState,
+  kFinalizeSubstep
 };
 
 /// From the master to every other rank: a command and its numbers. Nothing in a serial run.
@@ -63,6 +66,19 @@ class MasterSolver : public sdk::Solver {
   void output_step() override {
     broadcast(Command::kOutputStep);
     solver_.output_step();
+  }
+  bool can_substep() const override { return solver_.can_substep(); }
+  void save_state() override {
+    broadcast(Command::kSaveState);
+    solver_.save_state();
+  }
+  void restore_state() override {
+    broadcast(Command::kRestoreState);
+    solver_.restore_state();
+  }
+  void finalize_substep() override {
+    broadcast(Command::kFinalizeSubstep);
+    solver_.finalize_substep();
   }
   bool can_restart() const override { return solver_.can_restart(); }
   void save_restart(std::int32_t step) override {
@@ -128,6 +144,15 @@ void follow_master(PimpleFoamSolver& solver) {
         break;
       case Command::kReportConvergence:
         solver.start_reporting_convergence();
+        break;
+      case Command::kSaveState:
+        solver.save_state();
+        break;
+      case Command::kRestoreState:
+        solver.restore_state();
+        break;
+      case Command::kFinalizeSubstep:
+        solver.finalize_substep();
         break;
       case Command::kFinalize:
         solver.finalize();

@@ -238,11 +238,21 @@ std::size_t PimpleFoamSolver::input_size() const {
 void PimpleFoamSolver::initialize_step(std::int32_t step, double time) {
   reporting_foam_errors([&] {
     Time& runTime = *run_time_;
-    if (!runTime.run())  // also runs the function objects of the last step, as pimpleFoam
+    // run() also runs the function objects of the last step, as pimpleFoam; with substeps
+    // only on a window's converged start, not on the substeps of its coupling iterations.
+    ++window_substep_;
+    const bool committed = !window_start_ || (window_iteration_ == 0 && window_substep_ == 1);
+    if (!(committed ? runTime.run()
+                    : runTime.value() < runTime.endTime().value() - 0.5 * runTime.deltaTValue()))
       FatalIOErrorInFunction(runTime.controlDict())
           << "the coupler asks for step " << step << " (time " << time << ") but endTime is "
           << runTime.endTime().value() << ": raise endTime in controlDict" << exit(FatalIOError);
     ++runTime;
+    if (window_start_) {
+      run_time_->clear_write_flag();
+      // The run's first step by the time, whatever the time index says.
+      if (std::lround(runTime.value() / runTime.deltaTValue()) < 2) run_time_->as_first_step();
+    }
     stepped_ = true;
     if (std::abs(runTime.value() - time) > 1e-6 * runTime.deltaTValue())
       FatalErrorInFunction << "time " << runTime.timeName() << " after advancing, but the "
@@ -290,6 +300,7 @@ std::vector<double> PimpleFoamSolver::solve(const std::vector<double>& input) {
     restore_fields_ = false;
     converged_at_first_iteration_ = false;
     set_interface_displacement(input);
+    mesh_moved_in_window_ = true;  // in the first outer corrector
     const auto pimple_start = Clock::now();
     try {
       solve_pimple();
@@ -570,16 +581,92 @@ scalarField PimpleFoamSolver::gaps(label id) const {
 
 void PimpleFoamSolver::finalize_step() {
   reporting_foam_errors([&] {
-    run_time_->write();  // when controlDict's writeControl says so
+    if (!window_start_)
+      run_time_->write();  // when controlDict's writeControl says so
+    else if (window_holds_write_time())
+      run_time_->writeNow();
     run_time_->printExecutionTime(Info);
   });
 }
 
+void PimpleFoamSolver::save_state() {
+  reporting_foam_errors([&] {
+    if (!window_start_) {
+      check_time_scheme_for_substeps();
+      window_start_ = std::make_unique<WindowStartState>();
+    }
+    window_start_->store(*mesh_);
+    window_iteration_ = 0;
+    window_substep_ = 0;
+    mesh_moved_in_window_ = false;
+  });
+}
+
+void PimpleFoamSolver::check_time_scheme_for_substeps() const {
+  // Euler keeps one old time, backward two and its first step by the time index (see
+  // initialize_step); CrankNicolson keeps its own old-time fields by the index, which goes on
+  // counting through a window's coupling iterations: not restored.
+  const ITstream& stream = mesh_->ddtScheme("default");
+  const word scheme = stream.size() && stream[0].isWord() ? stream[0].wordToken() : word();
+  if (scheme != "Euler" && scheme != "backward")
+    FatalErrorInFunction << "substeps need ddtSchemes { default Euler; } or backward in "
+                         << mesh_->time().system() / "fvSchemes"
+                         << ", not " << (scheme.empty() ? word("none") : scheme)
+                         << ": cocoppPimpleFoam goes back to a window's start with the old "
+                            "times these keep"
+                         << exit(FatalError);
+}
+
+void PimpleFoamSolver::restore_state() {
+  reporting_foam_errors([&] {
+    window_start_->restore(*mesh_, *run_time_, mesh_moved_in_window_);
+    clear_residual_record();
+    pimple_->abandon_loop();  // after a rejected input, the loop may stand part way
+    restore_fields_ = false;
+    ++window_iteration_;
+    window_substep_ = 0;
+    mesh_moved_in_window_ = false;
+    Info << "Coupling iteration " << window_iteration_ + 1 << " of the window from time "
+         << run_time_->timeName() << ": its substeps again from its start" << nl << endl;
+  });
+}
+
+void PimpleFoamSolver::finalize_substep() {
+  // The window has not converged: nothing is written; the next substep goes on from here.
+  reporting_foam_errors([&] { run_time_->printExecutionTime(Info); });
+}
+
+bool PimpleFoamSolver::window_holds_write_time() const {
+  // Time's own write flags go by the time index, which keeps counting through a window's
+  // coupling iterations, or are raised once, in its first: decide from the times instead.
+  const Time& runTime = *run_time_;
+  const dictionary& control = runTime.controlDict();
+  const word write_control = control.get<word>("writeControl");
+  const scalar interval = control.get<scalar>("writeInterval");
+  const scalar delta_t = runTime.deltaTValue(), from = window_start_->time(), to = runTime.value();
+  if (write_control == "timeStep") {
+    const auto steps = [&](scalar time) { return std::lround(time / delta_t); };
+    const long every = std::max(1L, std::lround(interval));
+    return steps(to) / every > steps(from) / every;
+  }
+  if (write_control == "runTime" || write_control == "adjustableRunTime") {
+    const scalar start = runTime.startTime().value();
+    const auto writes = [&](scalar time) {
+      return static_cast<long>(std::floor((time - start + 0.5 * delta_t) / interval));
+    };
+    return writes(to) > writes(from);
+  }
+  return runTime.writeTime();
+}
+
 void PimpleFoamSolver::save_restart(std::int32_t step) {
   reporting_foam_errors([&] {
-    if (run_time_->timeIndex() != step)
-      FatalErrorInFunction << "the coupler asks for the restart data of step " << step
-                           << " but the solver is at time index " << run_time_->timeIndex()
+    // By the time: with substeps the time index keeps counting through the coupling
+    // iterations of a window (WindowStartState).
+    const scalar step_time = step * run_time_->deltaTValue();
+    if (std::abs(run_time_->value() - step_time) > 1e-6 * run_time_->deltaTValue())
+      FatalErrorInFunction << "the coupler asks for the restart data of step " << step << " (time "
+                           << step_time << ") but the solver is at time " << run_time_->timeName()
                            << exit(FatalError);
     run_time_->writeNow();  // the fields and the moved mesh, for a restart from this time
   });

@@ -38,6 +38,7 @@
 namespace cocopp::openfoam {
 
 class StepStartState;
+class WindowStartState;
 class FlowFields;
 
 /// The initial residual of each solve of a field recorded in a solverPerformanceDict entry,
@@ -82,6 +83,12 @@ class CoupledTime : public Foam::Time {
     startTime_ = time.value();
     startTimeIndex_ = index;
   }
+  /// With substeps the solver decides when to write (the windows' ends): Time's own flag,
+  /// raised by the time index, would write function objects' state at a substep.
+  void clear_write_flag() { writeTime_ = false; }
+  /// The step before this one as infinitely long: OpenFOAM's backward scheme is then Euler,
+  /// as it makes its first step (by the time index, which substeps keep counting on).
+  void as_first_step() { deltaT0_ = Foam::GREAT; }
 };
 
 class PimpleFoamSolver : public sdk::Solver {
@@ -108,6 +115,13 @@ class PimpleFoamSolver : public sdk::Solver {
   /// residualControl {...} } in fvSolution.
   void start_reporting_convergence() override;
   bool converged_at_first_iteration() const override { return converged_at_first_iteration_; }
+  /// Substeps: the time, the fields with their old times, the mesh with its old volumes and
+  /// flux go back to the window's start at each coupling iteration (WindowStartState); the
+  /// fields are written, and the function objects run, at the windows' ends only.
+  bool can_substep() const override { return true; }
+  void save_state() override;
+  void restore_state() override;
+  void finalize_substep() override;
 
  private:
   /// What pimpleFoam creates before its time loop (createTime, the mesh, createFields, ...).
@@ -133,6 +147,10 @@ class PimpleFoamSolver : public sdk::Solver {
   /// Rejects the input (sdk::InputRejected) once the outer loop diverges on it.
   void check_not_diverging(label corrector) const;
   std::vector<double> loads() const;
+  /// Substeps go back with the old times of Euler and backward only.
+  void check_time_scheme_for_substeps() const;
+  /// Whether controlDict's writeControl asks for a write in the window that ends now.
+  bool window_holds_write_time() const;
   /// Per face of interface patch `id`: the distance from its centre to the gap patch (on every
   /// rank's faces of it).
   Foam::scalarField gaps(Foam::label id) const;
@@ -166,7 +184,11 @@ class PimpleFoamSolver : public sdk::Solver {
   bool move_mesh_outer_correctors_ = false;
 
   std::unique_ptr<StepStartState> step_start_;
-  std::unique_ptr<FlowFields> previous_iterate_;  ///< with solver-coupling convergence only
+  std::unique_ptr<FlowFields> previous_iterate_;    ///< with solver-coupling convergence only
+  std::unique_ptr<WindowStartState> window_start_;  ///< with substeps only
+  int window_iteration_ = 0;                        ///< of the window, from 0
+  int window_substep_ = 0;                          ///< in this iteration of the window
+  bool mesh_moved_in_window_ = false;               ///< since the window's start
   int iteration_ = 0;
   bool stepped_ = false;
   bool warm_start_ = false;      ///< coupling iterations continue from the previous iterate

@@ -1,8 +1,11 @@
 #pragma once
 // The state at the start of a time step that every coupling iteration of cocoppPimpleFoam
 // starts from: the mesh points and a copy of every field OpenFOAM writes, restored exactly.
+// With substeps, the state at the start of a coupling time window: the same with the fields'
+// old times, the old cell volumes, the mesh flux and the time.
 #include <algorithm>
 #include <memory>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -16,11 +19,15 @@ namespace cocopp::openfoam {
 using Foam::fvMesh;
 using Foam::HashTable;
 using Foam::IOobject;
+using Foam::label;
 using Foam::objectRegistry;
 using Foam::pointField;
 using Foam::pointVectorField;
+using Foam::scalar;
+using Foam::scalarField;
 using Foam::surfaceScalarField;
 using Foam::surfaceVectorField;
+using Foam::Time;
 using Foam::volScalarField;
 using Foam::volSymmTensorField;
 using Foam::volVectorField;
@@ -131,6 +138,150 @@ class FlowFields {
   FieldCopies<volSymmTensorField> vol_symm_tensors_;
   FieldCopies<surfaceScalarField> surface_scalars_;
   FieldCopies<surfaceVectorField> surface_vectors_;
+};
+
+/// One field's values and those of its old times (U, U_0, U_0_0 as far as OpenFOAM keeps
+/// them), internal and on every patch (a point field's patches hold no values of their own
+/// but a fixedValue's, which the solver sets at each solve).
+template <class Field>
+class FieldHistory {
+ public:
+  explicit FieldHistory(const Field& field) {
+    const Field* level = &field;
+    for (label i = 0;; ++i) {
+      Level copy{level->primitiveField(), {}};
+      if constexpr (kPatchesHoldValues) {
+        copy.patches.setSize(level->boundaryField().size());
+        forAll(copy.patches, patch) copy.patches[patch] = level->boundaryField()[patch];
+      }
+      levels_.push_back(std::move(copy));
+      if (i == field.nOldTimes()) break;
+      level = &level->oldTime();
+    }
+  }
+  /// Puts the values back without OpenFOAM shifting old times (primitiveFieldRef(false)), and
+  /// marks the field current at `time_index`: it shifts them at the next time index.
+  ///
+  /// A level that did not exist at the window's start (U_0 and U_0_0 in the first window,
+  /// made by the time scheme in its first iteration) cannot be removed again: it gets the
+  /// oldest stored level's values, a history at rest before the window. (A second-order
+  /// scheme such as backward then starts the first window with that history in its second
+  /// and later iterations, where OpenFOAM's first step is Euler: docs/coupling.md.)
+  void restore(Field& field, label time_index) const {
+    Field* level = &field;
+    for (label i = 0; i <= field.nOldTimes(); ++i) {
+      if (i > 0) level = &const_cast<Field&>(level->oldTime());
+      const Level& values = levels_[std::min<std::size_t>(i, levels_.size() - 1)];
+      level->primitiveFieldRef(false) = values.internal;
+      if constexpr (kPatchesHoldValues) {
+        auto& boundary = level->boundaryFieldRef(false);
+        forAll(boundary, patch) boundary[patch] == values.patches[patch];
+      }
+      level->timeIndex() = time_index;
+    }
+  }
+
+ private:
+  using Values = typename Field::Internal::FieldType;
+  static constexpr bool kPatchesHoldValues = std::is_base_of_v<Values, typename Field::Patch>;
+  struct Level {
+    Values internal;
+    Foam::List<Values> patches;
+  };
+  std::vector<Level> levels_;
+};
+
+/// FieldHistory of every field of one type that OpenFOAM writes, by name.
+template <class Field>
+class FieldHistories {
+ public:
+  void store(const objectRegistry& registry) {
+    histories_.clear();
+    const HashTable<const Field*> fields = registry.lookupClass<Field>();
+    for (const word& name : fields.sortedToc()) {
+      const Field* field = fields[name];
+      if (field->writeOpt() != IOobject::AUTO_WRITE) continue;
+      histories_.emplace_back(name, FieldHistory<Field>(*field));
+    }
+  }
+  void restore(const objectRegistry& registry, label time_index) const {
+    for (const auto& [name, history] : histories_)
+      history.restore(const_cast<Field&>(registry.lookupObject<Field>(name)), time_index);
+  }
+
+ private:
+  std::vector<std::pair<word, FieldHistory<Field>>> histories_;
+};
+
+/// Whether `get` runs without an OpenFOAM error (errors are thrown: see main).
+template <class Get>
+bool available(Get&& get) {
+  try {
+    get();
+    return true;
+  } catch (const Foam::error&) {
+    return false;
+  }
+}
+
+/// The state at the start of a coupling time window of substeps, which every coupling
+/// iteration of the window starts from. The time goes back to the window's start, but its
+/// index goes on: OpenFOAM keeps a field's, the cells' and the mesh flux's old times by the
+/// time index (a new index shifts them), so the state is put back as current at today's index,
+/// and the next substep's new index shifts it into the old times as at the window's start.
+class WindowStartState {
+ public:
+  void store(const fvMesh& mesh) {
+    time_ = mesh.time().value();
+    points_ = mesh.points();
+    // The old volumes and the mesh flux exist once the mesh has moved, or were read at a
+    // restart: their accessors fail otherwise.
+    old_volumes_.reset(available([&] { mesh.V0(); }) ? new scalarField(mesh.V0()) : nullptr);
+    mesh_flux_.reset(available([&] { mesh.phi(); })
+                         ? new FieldHistory<surfaceScalarField>(mesh.phi())
+                         : nullptr);
+    vol_scalars_.store(mesh);
+    vol_vectors_.store(mesh);
+    vol_symm_tensors_.store(mesh);
+    surface_scalars_.store(mesh);
+    surface_vectors_.store(mesh);
+    point_vectors_.store(mesh);
+  }
+  /// `mesh_has_moved`: since the window's start (else it stands as it was then).
+  void restore(fvMesh& mesh, Time& time, bool mesh_has_moved) const {
+    const label index = time.timeIndex();
+    time.setTime(time_, index);
+    if (mesh_has_moved) {
+      // At the same index: the mesh's old points and volumes stay as they are.
+      mesh.movePoints(points_);
+      // No old volumes at the window's start (the first window): as if the mesh had stood
+      // still before it; likewise no mesh flux.
+      static_cast<scalarField&>(mesh.setV0()) = old_volumes_ ? *old_volumes_ : mesh.V().field();
+      if (mesh_flux_)
+        mesh_flux_->restore(mesh.setPhi(), index);
+      else
+        mesh.setPhi() == Foam::dimensionedScalar(Foam::dimVolume / Foam::dimTime, Foam::Zero);
+    }
+    vol_scalars_.restore(mesh, index);
+    vol_vectors_.restore(mesh, index);
+    vol_symm_tensors_.restore(mesh, index);
+    surface_scalars_.restore(mesh, index);
+    surface_vectors_.restore(mesh, index);
+    point_vectors_.restore(mesh, index);
+  }
+  scalar time() const { return time_; }
+
+ private:
+  scalar time_ = 0;
+  pointField points_;
+  std::unique_ptr<scalarField> old_volumes_;
+  std::unique_ptr<FieldHistory<surfaceScalarField>> mesh_flux_;
+  FieldHistories<volScalarField> vol_scalars_;
+  FieldHistories<volVectorField> vol_vectors_;
+  FieldHistories<volSymmTensorField> vol_symm_tensors_;
+  FieldHistories<surfaceScalarField> surface_scalars_;
+  FieldHistories<surfaceVectorField> surface_vectors_;
+  FieldHistories<pointVectorField> point_vectors_;
 };
 
 }  // namespace cocopp::openfoam

@@ -213,9 +213,16 @@ class Solver:
         per coupling time step. The SDK then drives each window: the solver sees a run of time
         step delta_t / k whose steps are the substeps, and every coupling iteration is k of its
         steps from the window's start (initialize_step, solve with that substep's input,
-        finalize_step but for the last). For that save_state() keeps the committed state in
-        memory at the window's start and restore_state() goes back to it."""
+        finalize_substep but for the last, which the coupler finalizes once the window has
+        converged). For that save_state() keeps the committed state in memory at the window's
+        start and restore_state() goes back to it."""
         return False
+
+    def finalize_substep(self):
+        """The end of a substep inside a window that has not converged yet: the next substep
+        starts from it. By default finalize_step(); a solver that writes its results there
+        may leave that to the window's end."""
+        self.finalize_step()
 
     def save_state(self):
         pass
@@ -439,7 +446,7 @@ class _Server:
                                    "as the interface description implies"))
             converged = converged and bool(self.solver.converged_at_first_iteration())
             if j < k:
-                self.solver.finalize_step()
+                self.solver.finalize_substep()
         output = np.concatenate(outputs)
         if self.reporting_convergence:
             self.channel.send(bytes([_DATA_CONVERGED]) + _f64_array(output) +

@@ -237,7 +237,7 @@ class Server {
       check_output_size(substep_output);
       output.insert(output.end(), substep_output.begin(), substep_output.end());
       converged = converged && solver_.converged_at_first_iteration();
-      if (j < substeps_) solver_.finalize_step();
+      if (j < substeps_) solver_.finalize_substep();
     }
     send_output(output, converged);
   }

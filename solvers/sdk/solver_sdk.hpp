@@ -67,10 +67,15 @@ class Solver {
   /// of time step delta_t / k whose steps are the substeps (initialize() gets both divided and
   /// multiplied accordingly, save_restart() the substep), and every coupling iteration is k of
   /// its steps from the window's start: initialize_step(), solve() with the input at that
-  /// substep's end, finalize_step() but for the last. For that a solver keeps its committed
-  /// state in memory: save_state() (at the window's start) and restore_state() (before the
-  /// next iteration of the window). A solver that can returns true here.
+  /// substep's end, finalize_substep() but for the last (the coupler finalizes that one once
+  /// the window has converged). For that a solver keeps its committed state in memory:
+  /// save_state() (at the window's start) and restore_state() (before the next iteration of
+  /// the window). A solver that can returns true here.
   virtual bool can_substep() const { return false; }
+  /// The end of a substep inside a window that has not converged yet: the next substep starts
+  /// from it. By default finalize_step(); a solver that writes its results there may leave
+  /// that to the window's end.
+  virtual void finalize_substep() { finalize_step(); }
   virtual void save_state() {}
   virtual void restore_state() {}
 };

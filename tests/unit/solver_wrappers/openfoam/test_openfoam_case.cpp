@@ -134,7 +134,7 @@ TEST_F(CaseCheckTest, TheTimeStepMustBeTheCouplers) {
   EXPECT_CONTAINS(error_message<CaseError>([&] { check(0.002).run(); }),
                   file("system/controlDict") +
                       ":11: solver 'fluid': deltaT 0.001 differs from the coupler's time step "
-                      "delta_t 0.002");
+                      "0.002 (delta_t, divided by the solver's substeps)");
   write("system/controlDict", "deltaT 0.001;\nadjustTimeStep yes;\n");
   EXPECT_CONTAINS(error_message<CaseError>([&] { check().run(); }),
                   file("system/controlDict") + ":12: solver 'fluid': adjustTimeStep yes");
