@@ -3,6 +3,7 @@
 
     make_case.py fsi1|fsi2|fsi3|cfd3 OUTPUT [--level 1] [--dt 0.001] [--end-time 15] [--q 10]
                  [--tolerance 1e-7] [--alpha -0.1] [--pressure-rel-tol 0] [--cores 1]
+                 [--fluid-substeps 1]
 
 OUTPUT/fluid: the channel as an OpenFOAM case for cocoppPimpleFoam (make_mesh.py's blockMeshDict,
 its Allmesh runs blockMesh); OUTPUT/flag/flag.inp: the flag in CalculiX (the CSM tests' flag,
@@ -201,7 +202,7 @@ pimpleFoam > log.pimpleFoam 2>&1 || { echo "Allrun: pimpleFoam failed, see $PWD/
 """
 
 
-def case_file(test, level, dt, steps, q, tolerance, depth, command, cores=1):
+def case_file(test, level, dt, steps, q, tolerance, depth, command, cores=1, fluid_substeps=1):
     """The coupled case (case.yaml): IQN-ILS with reuse, the fluid in OpenFOAM and the flag in
     CalculiX behind a mapped wrapper."""
     fluid = {"type": case.commented("openfoam",
@@ -210,6 +211,9 @@ def case_file(test, level, dt, steps, q, tolerance, depth, command, cores=1):
              "timeout": 600}
     if cores > 1:
         fluid["cores"] = case.commented(cores, "MPI ranks (system/decomposeParDict)")
+    if fluid_substeps > 1:
+        fluid["substeps"] = case.commented(
+            fluid_substeps, "the fluid's steps per coupling step (controlDict's deltaT)")
     flag = {
         "type": case.commented("mapped", "S: the loads -> the flag's displacement"),
         "name": "flag",
@@ -237,6 +241,9 @@ def case_file(test, level, dt, steps, q, tolerance, depth, command, cores=1):
             "min_significant_relative": case.commented(1.0e-3, "else FSI3's reused columns "
                                                                "overshoot (docs)")},
         "predictor": {"type": "linear"},
+        **({"time_interpolation": case.commented(
+            "quadratic", "the flag's displacement at the fluid's substeps (docs/coupling.md)")}
+           if fluid_substeps > 1 else {}),
         "convergence_criterion": {"type": "or", "criteria": [
             {"type": case.commented("absolute_norm",
                                     f"the flag's displacement to {tolerance} m (2-norm)"),
@@ -260,7 +267,7 @@ def write_made(args, dt, end_time):
         {"test": args.test, "level": args.level, "dt": dt, "end_time": end_time,
          "depth": args.depth, "q": args.q, "tolerance": args.tolerance,
          "alpha": args.alpha, "pressure_rel_tol": args.pressure_rel_tol,
-         "cores": args.cores}, indent=1) + "\n")
+         "cores": args.cores, "fluid_substeps": args.fluid_substeps}, indent=1) + "\n")
 
 
 def main():
@@ -281,14 +288,17 @@ def main():
                              "(0: every one to 1e-10)")
     parser.add_argument("--cores", type=int, default=1,
                         help="MPI ranks of the fluid (the coupled tests; decomposeParDict)")
+    parser.add_argument("--fluid-substeps", type=int, default=1,
+                        help="the fluid's own steps per coupling time step (--dt): the fluid at "
+                             "dt / K, the flag at dt (docs/coupling.md, substeps)")
     args = parser.parse_args()
     dt = args.dt or DEFAULT_DT[args.test]
     end_time = args.end_time or DEFAULT_END[args.test]
     steps = round(end_time / dt)
     command = "make_case.py " + " ".join(sys.argv[1:])
     openfoam.write_case(args.output / "fluid",
-                        fluid_files(args.test, args.level, dt, end_time, args.depth,
-                                    args.pressure_rel_tol, args.cores))
+                        fluid_files(args.test, args.level, dt / args.fluid_substeps, end_time,
+                                    args.depth, args.pressure_rel_tol, args.cores))
     if args.test == "cfd3":
         write_made(args, dt, end_time)
         print(f"make_case.py: {args.output}: cfd3 (the fluid alone, fluid/Allrun), level "
@@ -299,7 +309,7 @@ def main():
         turek_hron.flag_deck(args.test, 20 * args.level, 2 * args.level, dt, args.alpha))
     (args.output / "case.yaml").write_text(
         case_file(args.test, args.level, dt, steps, args.q, args.tolerance, args.depth,
-                  command, args.cores))
+                  command, args.cores, args.fluid_substeps))
     write_made(args, dt, end_time)
     print(f"make_case.py: {args.output}: {args.test}, level {args.level}, "
           f"{make_mesh.cell_count(args.level)} cells, dt {dt}, {steps} steps")
