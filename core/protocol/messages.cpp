@@ -1,6 +1,7 @@
 #include "core/protocol/messages.hpp"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace cocopp::protocol {
 
@@ -27,6 +28,23 @@ void write_names(FrameWriter& writer, const std::vector<std::string>& names) {
   for (const auto& name : names) writer.string(name);
 }
 
+/// A name a solver chose (model part, variable) reaches the terminal, the log and the results
+/// file as it is: one with a control character (an escape sequence, a bell) is refused.
+std::string printable_name(std::string name, const char* what) {
+  for (std::size_t i = 0; i < name.size(); ++i) {
+    const auto byte = static_cast<unsigned char>(name[i]);
+    if (byte >= 0x20 && byte != 0x7f) continue;
+    char code[8];
+    std::snprintf(code, sizeof code, "0x%02x", byte);
+    throw ProtocolError(std::string("INTERFACE: the ") + what + " name '" + printable_text(name) +
+                        "' holds a control character (byte " + code + " at position " +
+                        std::to_string(i + 1) +
+                        "): names are printed and written to the "
+                        "results as they are; send printable names");
+  }
+  return name;
+}
+
 std::vector<std::string> read_names(FrameReader& reader) {
   const std::uint32_t count = reader.u32();
   // Every string takes at least its 4-byte length: bounds the reservation by the frame size.
@@ -34,7 +52,8 @@ std::vector<std::string> read_names(FrameReader& reader) {
     throw ProtocolError("truncated frame: " + std::to_string(count) + " names announced");
   std::vector<std::string> names;
   names.reserve(count);
-  for (std::uint32_t i = 0; i < count; ++i) names.push_back(reader.string());
+  for (std::uint32_t i = 0; i < count; ++i)
+    names.push_back(printable_name(reader.string(), "variable"));
   return names;
 }
 
@@ -200,7 +219,7 @@ sdk::InterfaceDescription decode_interface(const Frame& frame) {
   const std::uint32_t parts = reader.u32();
   for (std::uint32_t i = 0; i < parts; ++i) {
     sdk::ModelPart part;
-    part.name = reader.string();
+    part.name = printable_name(reader.string(), "model part");
     part.ids = reader.i64_array();
     part.coordinates = reader.f64_array();
     part.input_variables = read_names(reader);

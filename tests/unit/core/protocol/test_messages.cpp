@@ -66,6 +66,32 @@ TEST(MessagesTest, RepliesRoundTrip) {
   EXPECT_EQ(decoded.initial_output, original.initial_output);
 }
 
+// Names a solver chooses reach the terminal and the results as they are: an escape sequence or
+// a bell in one is a protocol error that names it, printably.
+TEST(MessagesTest, NamesWithControlCharactersAreRefused) {
+  auto description = two_part_description();
+  EXPECT_NO_THROW(decode_interface(encode_interface(description)));
+  description.model_parts[0].name = "wall\x1b[31m";
+  try {
+    decode_interface(encode_interface(description));
+    ADD_FAILURE() << "no error";
+  } catch (const ProtocolError& e) {
+    EXPECT_NE(std::string(e.what()).find("the model part name 'wall?[31m' holds a control "
+                                         "character (byte 0x1b at position 5)"),
+              std::string::npos)
+        << e.what();
+  }
+  description = two_part_description();
+  description.model_parts[1].output_variables[0] = "pres\asure";
+  try {
+    decode_interface(encode_interface(description));
+    ADD_FAILURE() << "no error";
+  } catch (const ProtocolError& e) {
+    EXPECT_NE(std::string(e.what()).find("the variable name 'pres?sure'"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(MessagesTest, FirstByteIsTheType) {
   EXPECT_EQ(encode_solve(nullptr, 0)[0], 3);
   EXPECT_EQ(encode_hello({})[0], 128);
