@@ -50,6 +50,11 @@ RunSettings read_run_settings(const Settings& s, const std::filesystem::path& ca
 /// that name each.
 void collect_working_directories(const Settings& wrapper,
                                  std::vector<std::pair<std::filesystem::path, Settings>>& out) {
+  if (wrapper.has("working_directory") &&
+      wrapper.required<std::string>("working_directory").empty())
+    wrapper.fail("working_directory",
+                 "is empty: give the solver's own folder (relative to the case file's), which "
+                 "holds its channel to the coupler and its log");
   if (wrapper.has("working_directory"))
     out.emplace_back(
         // (a trailing "/" for every path, so that "flow" and "flow/" compare equal)
@@ -63,6 +68,14 @@ void collect_working_directories(const Settings& wrapper,
       collect_working_directories(member, out);
 }
 
+/// The same folder written two ways ("flow", an absolute path, "../case/flow", a link to it):
+/// by name, or, where both exist, by identity (device and inode).
+bool same_directory(const std::filesystem::path& a, const std::filesystem::path& b) {
+  if (a == b) return true;
+  std::error_code error;
+  return std::filesystem::equivalent(a, b, error) && !error;
+}
+
 /// Two solvers in one working directory would share its channel (the pipes or message files)
 /// and their logs: a case error, found before anything starts.
 std::vector<std::filesystem::path> own_working_directories(const std::vector<Settings>& wrappers) {
@@ -71,7 +84,7 @@ std::vector<std::filesystem::path> own_working_directories(const std::vector<Set
   std::vector<std::filesystem::path> directories;
   for (std::size_t j = 0; j < all.size(); ++j) {
     for (std::size_t i = 0; i < j; ++i)
-      if (all[i].first == all[j].first)
+      if (same_directory(all[i].first, all[j].first))
         all[j].second.fail("working_directory",
                            "is also another solver's (" + all[i].second.where("working_directory") +
                                "): give each solver its own working directory, which holds its "

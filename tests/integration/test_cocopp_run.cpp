@@ -340,6 +340,18 @@ TEST(CocoppCheck, NumbersThatWouldBreakTheRunAndASharedWorkingDirectory) {
                "'solver_wrappers[1].timeout': must be in (0, 10000000], got 10000000000");
   expect_error("    working_directory: structure\n", "    working_directory: flow/\n",
                "'solver_wrappers[1].working_directory': is also another solver's");
+  // The same folder written another way: absolute, through its parent, through a link.
+  expect_error("    working_directory: structure\n",
+               "    working_directory: " + (dir / "flow").string() + "\n",
+               "'solver_wrappers[1].working_directory': is also another solver's");
+  expect_error("    working_directory: structure\n",
+               "    working_directory: ../" + dir.filename().string() + "/flow\n",
+               "'solver_wrappers[1].working_directory': is also another solver's");
+  fs::create_directory_symlink(dir / "flow", dir / "flow_link");
+  expect_error("    working_directory: structure\n", "    working_directory: flow_link\n",
+               "'solver_wrappers[1].working_directory': is also another solver's");
+  expect_error("    working_directory: structure\n", "    working_directory: ''\n",
+               "'solver_wrappers[1].working_directory': is empty");
   fs::remove_all(dir);
 }
 
