@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -22,12 +23,31 @@ std::string holder_of(int fd) {
   return pid;
 }
 
+int locked_file(const std::filesystem::path& file);
+
 int lock_file(const std::filesystem::path& file) {
   std::error_code error;
   std::filesystem::create_directories(file.parent_path(), error);
   if (error)
     throw std::runtime_error("cannot use the directory " + file.parent_path().string() + ": " +
                              error.message());
+  // A run removes its lock files when it ends (release): a lock taken on a file that was
+  // removed (or replaced) between our open and our flock locks nothing; then again.
+  for (int attempt = 0;; ++attempt) {
+    const int fd = locked_file(file);
+    struct stat held {
+    }, named{};
+    if (::fstat(fd, &held) == 0 && ::lstat(file.c_str(), &named) == 0 &&
+        held.st_dev == named.st_dev && held.st_ino == named.st_ino)
+      return fd;
+    ::close(fd);
+    if (attempt == 10)
+      throw std::runtime_error("cannot lock " + file.string() +
+                               ": it is removed and created again as it is locked");
+  }
+}
+
+int locked_file(const std::filesystem::path& file) {
   // O_NOFOLLOW: a symlink planted at the lock's name must not lock (or truncate) its target.
   const int fd = ::open(file.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
   if (fd < 0)
@@ -58,7 +78,7 @@ int lock_file(const std::filesystem::path& file) {
 
 CaseLock::CaseLock(const std::vector<std::filesystem::path>& files) {
   try {
-    for (const auto& file : files) descriptors_.push_back(lock_file(file));
+    for (const auto& file : files) held_.emplace_back(file, lock_file(file));
   } catch (...) {
     release();
     throw;
@@ -70,8 +90,14 @@ CaseLock::~CaseLock() {
 }
 
 void CaseLock::release() noexcept {
-  for (int fd : descriptors_) ::close(fd);  // closing drops the lock; the file stays
-  descriptors_.clear();
+  // Removed while still locked, so that no run can take a lock on it that another would not
+  // see (lock_file checks that the file it locked is still the one the name gives). A run that
+  // dies leaves its file, unlocked, for the next.
+  for (const auto& [file, fd] : held_) {
+    ::unlink(file.c_str());
+    ::close(fd);
+  }
+  held_.clear();
 }
 
 }  // namespace cocopp

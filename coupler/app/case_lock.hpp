@@ -3,9 +3,11 @@
 // file and talk through the same solver channels; the second must stop before it touches any
 // of them, and say which process holds the case. An exclusive flock on a lock file in the
 // results directory (<name>.lock) and in each solver working directory (.cocopp.lock), held
-// for the run's life; the kernel drops it when the process ends, however it ends.
+// for the run's life; the kernel drops it when the process ends, however it ends. The files
+// are removed when the run ends (a killed run leaves them, unlocked).
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace cocopp {
@@ -22,7 +24,7 @@ class CaseLock {
 
  private:
   void release() noexcept;
-  std::vector<int> descriptors_;
+  std::vector<std::pair<std::filesystem::path, int>> held_;  ///< each file and its descriptor
 };
 
 }  // namespace cocopp

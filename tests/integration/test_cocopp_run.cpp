@@ -440,9 +440,12 @@ TEST(CocoppRun, ASecondRunOfARunningCaseStopsAndLeavesTheFirstAlone) {
   EXPECT_EQ(read_dataset(dir / "results" / "case.h5", "steps/step").size(), 3000u);
   EXPECT_GE(fs::last_write_time(dir / "results" / "case.h5"), summary_before);
   EXPECT_EQ(read_json(dir / "results" / "case.summary.json")["steps_completed"].get<int>(), 3000);
-  // Ended, the first run holds nothing: the case runs again.
+  // Ended, the first run holds nothing, and leaves no lock file: the case runs again.
+  EXPECT_FALSE(fs::exists(dir / "results" / "case.lock"));
+  EXPECT_FALSE(fs::exists(dir / "flow" / ".cocopp.lock"));
   edit(dir / "case.yaml", "number_of_timesteps: 3000", "number_of_timesteps: 5");
   EXPECT_EQ(run_cocopp("run --quiet " + (dir / "case.yaml").string()).exit_code, 0);
+  EXPECT_FALSE(fs::exists(dir / "results" / "case.lock"));
   fs::remove_all(dir);
 }
 

@@ -89,4 +89,4 @@ cocopp_unit_test(coupler/results
   SOURCES test_results_writer.cpp test_results_reader.cpp test_run_summary.cpp
           test_results_python.cpp test_watchpoints.cpp test_state_file.cpp
   LIBS cocopp_coupling)
-cocopp_unit_test(coupler/app SOURCES test_components.cpp LIBS cocopp_app)
+cocopp_unit_test(coupler/app SOURCES test_components.cpp test_case_lock.cpp LIBS cocopp_app)
