@@ -1,5 +1,7 @@
 #include "core/case/path_problem.hpp"
 
+#include <unistd.h>
+
 #include <system_error>
 
 namespace cocopp {
@@ -29,6 +31,20 @@ std::string path_problem(const std::filesystem::path& path, PathKind kind) {
   if (kind == PathKind::kRegularFile && !std::filesystem::is_regular_file(status))
     return std::filesystem::is_directory(status) ? "is a directory, not a file"
                                                  : "is not a regular file";
+  return "";
+}
+
+std::string creation_problem(const std::filesystem::path& directory) {
+  const std::string why = path_problem(directory, PathKind::kDirectory);
+  if (why != "does not exist") return why;
+  std::filesystem::path existing = std::filesystem::absolute(directory).parent_path();
+  while (path_problem(existing, PathKind::kAny) == "does not exist" && existing.has_parent_path() &&
+         existing != existing.parent_path())
+    existing = existing.parent_path();
+  if (const auto problem = path_problem(existing, PathKind::kDirectory); !problem.empty())
+    return "cannot be created: " + existing.string() + " " + problem;
+  if (::access(existing.c_str(), W_OK | X_OK) != 0)
+    return "cannot be created: " + existing.string() + " is not writable";
   return "";
 }
 

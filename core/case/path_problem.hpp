@@ -14,6 +14,11 @@ enum class PathKind { kDirectory, kRegularFile, kAny };
 /// links", "has a name longer than the file system allows", "is not a directory", ...
 std::string path_problem(const std::filesystem::path& path, PathKind kind);
 
+/// "" if `directory` exists as a directory, or its nearest existing folder is one that can be
+/// written to (the run creates the rest); else why it cannot be created: "cannot be created:
+/// /a/b is not a directory", "... /a is not writable".
+std::string creation_problem(const std::filesystem::path& directory);
+
 /// The reason of a std::filesystem error in the same words, with the path it concerns:
 /// "/a/b is a loop of symbolic links".
 std::string describe_filesystem_error(const std::filesystem::filesystem_error& error);

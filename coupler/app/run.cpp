@@ -38,8 +38,7 @@ void on_interrupt(int signal) {
 /// file, a loop of links or a name too long. And cocopp writes only files it creates: a link
 /// at a results file's name (planted, or made by hand) would make it overwrite its target.
 void check_results_files(const Case& c) {
-  if (const auto why = path_problem(c.files.directory, PathKind::kDirectory);
-      !why.empty() && why != "does not exist")
+  if (const auto why = creation_problem(c.files.directory); !why.empty())
     throw std::runtime_error(c.results_where + ": cannot use the directory " +
                              c.files.directory.string() + ": it " + why);
   for (const auto& file : c.files.replaced())
@@ -350,6 +349,11 @@ RunReport run_case(const std::filesystem::path& case_file, const RunOptions& opt
   std::unique_ptr<CaseLock> lock;
   try {
     check_results_files(c);
+    std::error_code error;
+    std::filesystem::create_directories(c.files.directory, error);
+    if (error)
+      throw std::runtime_error(c.results_where + ": cannot create the directory " +
+                               c.files.directory.string() + ": " + error.message());
     std::vector<std::filesystem::path> lock_files{c.files.lock()};
     for (const auto& directory : c.working_directories)
       lock_files.push_back(directory / ".cocopp.lock");

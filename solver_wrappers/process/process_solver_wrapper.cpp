@@ -200,6 +200,8 @@ ProcessSolverWrapper::ProcessSolverWrapper(const Settings& settings, const RunSe
       "solver_busy_wait", default_command ? default_command->solver_busy_wait : 0.0,
       Range::closed(0.0, 0.1));
   log_file_ = working_directory_ / settings.get<std::string>("log_file", name_ + ".log");
+  log_file_where_ =
+      settings.has("log_file") ? settings.where("log_file") : working_directory_where_;
   // Steps of its own per coupling time step (docs/coupling.md, "Substeps").
   substeps_ = settings.get_int_in_range("substeps", 1, 1, 10000);
 }
@@ -259,6 +261,9 @@ void ProcessSolverWrapper::check() const {
   if (const auto why = path_problem(working_directory_, PathKind::kDirectory); !why.empty())
     throw CaseError(working_directory_where_ + ": " + solver + "working directory " +
                     working_directory_.string() + " " + why);
+  if (const auto why = creation_problem(log_file_.parent_path()); !why.empty())
+    throw CaseError(log_file_where_ + ": " + solver + "the log file's folder " +
+                    log_file_.parent_path().string() + " " + why);
   try {
     find_executable(command_[0], working_directory_);
   } catch (const std::runtime_error& e) {

@@ -152,6 +152,7 @@ class ProcessSolverWrapper : public SolverWrapper {
   std::vector<std::pair<std::string, std::string>> default_environment_;
   // Where in the case file, for check() errors.
   std::string working_directory_where_;
+  std::string log_file_where_;  ///< the case file's line of log_file (else of working_directory)
   std::string command_where_;
   std::string input_file_where_;
   RunSettings run_;

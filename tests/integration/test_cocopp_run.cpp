@@ -477,6 +477,22 @@ TEST(CocoppRun, AResultsLocationThatCannotBeUsedStopsTheRunBeforeTheSolversStart
   edit(dir / "case.yaml", "number_of_timesteps: 100",
        "number_of_timesteps: 100\n  results_directory: loop_a/results");
   expect_clean_error("is a loop of symbolic links");
+  // A directory that cannot be created (under /proc, where even root cannot) is named at its
+  // key too; so is a log file's folder under a file, already by check.
+  write_text(dir / "case.yaml", original);
+  edit(dir / "case.yaml", "number_of_timesteps: 100",
+       "number_of_timesteps: 100\n  results_directory: /proc/none/results");
+  expect_clean_error(
+      "case.yaml:8:22: 'settings.results_directory': cannot create the directory "
+      "/proc/none/results");
+  write_text(dir / "case.yaml", original);
+  edit(dir / "case.yaml", "    working_directory: flow ",
+       "    log_file: ../case.yaml/flow.log\n    working_directory: flow ");
+  const CommandResult check = run_cocopp("check " + (dir / "case.yaml").string());
+  EXPECT_EQ(check.exit_code, 2) << check.output;
+  EXPECT_NE(check.output.find("solver 'flow': the log file's folder"), std::string::npos)
+      << check.output;
+  EXPECT_NE(check.output.find("case.yaml is not a directory"), std::string::npos) << check.output;
   fs::remove_all(dir);
 }
 

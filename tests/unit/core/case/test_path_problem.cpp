@@ -2,6 +2,8 @@
 // throwing calls said "filesystem error: status: Too many levels of symbolic links [...]").
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "core/case/path_problem.hpp"
 #include "tests/support/temporary_directory.hpp"
 
@@ -48,4 +50,14 @@ TEST(PathProblem, AThrownFilesystemErrorIsDescribedWithItsPath) {
         cocopp::describe_filesystem_error(e),
         (dir / "loop_a").string() + " is a loop of symbolic links (or more than 40 links deep)");
   }
+}
+
+TEST(PathProblem, ADirectoryToCreateNeedsAWritableFolderAboveIt) {
+  cocopp::testing::TemporaryDirectory dir;
+  EXPECT_EQ(cocopp::creation_problem(dir.path()), "");              // exists
+  EXPECT_EQ(cocopp::creation_problem(dir / "new" / "deeper"), "");  // can be made
+  { std::ofstream(dir / "file") << "x"; }
+  EXPECT_EQ(cocopp::creation_problem(dir / "file"), "is not a directory");
+  EXPECT_EQ(cocopp::creation_problem(dir / "file" / "results"),
+            "does not exist (a part of it is a file)");
 }
