@@ -23,30 +23,6 @@ std::string holder_of(int fd) {
   return pid;
 }
 
-int locked_file(const std::filesystem::path& file);
-
-int lock_file(const std::filesystem::path& file) {
-  std::error_code error;
-  std::filesystem::create_directories(file.parent_path(), error);
-  if (error)
-    throw std::runtime_error("cannot use the directory " + file.parent_path().string() + ": " +
-                             error.message());
-  // A run removes its lock files when it ends (release): a lock taken on a file that was
-  // removed (or replaced) between our open and our flock locks nothing; then again.
-  for (int attempt = 0;; ++attempt) {
-    const int fd = locked_file(file);
-    struct stat held {
-    }, named{};
-    if (::fstat(fd, &held) == 0 && ::lstat(file.c_str(), &named) == 0 &&
-        held.st_dev == named.st_dev && held.st_ino == named.st_ino)
-      return fd;
-    ::close(fd);
-    if (attempt == 10)
-      throw std::runtime_error("cannot lock " + file.string() +
-                               ": it is removed and created again as it is locked");
-  }
-}
-
 int locked_file(const std::filesystem::path& file) {
   // O_NOFOLLOW: a symlink planted at the lock's name must not lock (or truncate) its target.
   const int fd = ::open(file.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
@@ -72,6 +48,28 @@ int locked_file(const std::filesystem::path& file) {
                              std::strerror(reason));
   }
   return fd;
+}
+
+int lock_file(const std::filesystem::path& file) {
+  std::error_code error;
+  std::filesystem::create_directories(file.parent_path(), error);
+  if (error)
+    throw std::runtime_error("cannot use the directory " + file.parent_path().string() + ": " +
+                             error.message());
+  // A run removes its lock files when it ends (release): a lock taken on a file that was
+  // removed (or replaced) between our open and our flock locks nothing; then again.
+  for (int attempt = 0;; ++attempt) {
+    const int fd = locked_file(file);
+    struct stat held {};
+    struct stat named {};
+    if (::fstat(fd, &held) == 0 && ::lstat(file.c_str(), &named) == 0 &&
+        held.st_dev == named.st_dev && held.st_ino == named.st_ino)
+      return fd;
+    ::close(fd);
+    if (attempt == 10)
+      throw std::runtime_error("cannot lock " + file.string() +
+                               ": it is removed and created again as it is locked");
+  }
 }
 
 }  // namespace

@@ -157,6 +157,11 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& file, const RunDescrip
   // replaces the old one once it has everything this run needs.
   std::filesystem::path fresh = path_;
   fresh += ".continued";
+  const auto abandon_copy = [&] {
+    release();
+    std::error_code ignored;
+    std::filesystem::remove(fresh, ignored);
+  };
   try {
     copy_kept_rows(fresh);
     file_ = H5Handle(checked(H5Fopen(fresh.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), "opening the copy"),
@@ -171,15 +176,12 @@ ResultsWriter::ResultsWriter(const std::filesystem::path& file, const RunDescrip
     std::error_code error;
     std::filesystem::rename(fresh, path_, error);
     if (error) throw H5Error("replacing it by " + fresh.string() + " failed: " + error.message());
-  } catch (...) {
-    release();
-    std::error_code ignored;
-    std::filesystem::remove(fresh, ignored);
-    try {
-      throw;
-    } catch (const H5Error& error) {
-      fail(error);
-    }
+  } catch (const H5Error& error) {
+    abandon_copy();
+    fail(error);
+  } catch (...) {  // a case that does not fit the file: its message names the file already
+    abandon_copy();
+    throw;
   }
 }
 

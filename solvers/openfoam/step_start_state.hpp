@@ -75,38 +75,53 @@ class FieldCopies {
   std::vector<std::pair<word, std::unique_ptr<Field>>> copies_;
 };
 
+/// One `Per<Field>` for each type of field that a state keeps, all called alike.
+template <template <class> class Per>
+struct EveryFieldType {
+  template <class Action>
+  void each(Action&& action) {
+    each_of(*this, action);
+  }
+  template <class Action>
+  void each(Action&& action) const {
+    each_of(*this, action);
+  }
+  Per<volScalarField> vol_scalars;
+  Per<volVectorField> vol_vectors;
+  Per<volSymmTensorField> vol_symm_tensors;
+  Per<surfaceScalarField> surface_scalars;
+  Per<surfaceVectorField> surface_vectors;
+  Per<pointVectorField> point_vectors;
+
+ private:
+  template <class Self, class Action>
+  static void each_of(Self& self, Action& action) {
+    action(self.vol_scalars);
+    action(self.vol_vectors);
+    action(self.vol_symm_tensors);
+    action(self.surface_scalars);
+    action(self.surface_vectors);
+    action(self.point_vectors);
+  }
+};
+
 /// The state at the start of a time step that every coupling iteration starts from.
 class StepStartState {
  public:
   void store(const fvMesh& mesh) {
     points_ = mesh.points();
-    vol_scalars_.store(mesh);
-    vol_vectors_.store(mesh);
-    vol_symm_tensors_.store(mesh);
-    surface_scalars_.store(mesh);
-    surface_vectors_.store(mesh);
-    point_vectors_.store(mesh);
+    fields_.each([&](auto& copies) { copies.store(mesh); });
   }
   void restore(fvMesh& mesh) const {
     // Back to the mesh of the step's start: the motion solver and the discretisation depend
     // on the current geometry. The old-time points and volumes of the step stay as they are.
     mesh.movePoints(points_);
-    vol_scalars_.restore(mesh);
-    vol_vectors_.restore(mesh);
-    vol_symm_tensors_.restore(mesh);
-    surface_scalars_.restore(mesh);
-    surface_vectors_.restore(mesh);
-    point_vectors_.restore(mesh);
+    fields_.each([&](const auto& copies) { copies.restore(mesh); });
   }
 
  private:
   pointField points_;
-  FieldCopies<volScalarField> vol_scalars_;
-  FieldCopies<volVectorField> vol_vectors_;
-  FieldCopies<volSymmTensorField> vol_symm_tensors_;
-  FieldCopies<surfaceScalarField> surface_scalars_;
-  FieldCopies<surfaceVectorField> surface_vectors_;
-  FieldCopies<pointVectorField> point_vectors_;
+  EveryFieldType<FieldCopies> fields_;
 };
 
 /// The flow fields of a coupling iterate, without the mesh and the motion solver's fields.
@@ -240,12 +255,7 @@ class WindowStartState {
     mesh_flux_.reset(available([&] { mesh.phi(); })
                          ? new FieldHistory<surfaceScalarField>(mesh.phi())
                          : nullptr);
-    vol_scalars_.store(mesh);
-    vol_vectors_.store(mesh);
-    vol_symm_tensors_.store(mesh);
-    surface_scalars_.store(mesh);
-    surface_vectors_.store(mesh);
-    point_vectors_.store(mesh);
+    fields_.each([&](auto& histories) { histories.store(mesh); });
   }
   /// `mesh_has_moved`: since the window's start (else it stands as it was then).
   void restore(fvMesh& mesh, Time& time, bool mesh_has_moved) const {
@@ -262,12 +272,7 @@ class WindowStartState {
       else
         mesh.setPhi() == Foam::dimensionedScalar(Foam::dimVolume / Foam::dimTime, Foam::Zero);
     }
-    vol_scalars_.restore(mesh, index);
-    vol_vectors_.restore(mesh, index);
-    vol_symm_tensors_.restore(mesh, index);
-    surface_scalars_.restore(mesh, index);
-    surface_vectors_.restore(mesh, index);
-    point_vectors_.restore(mesh, index);
+    fields_.each([&](const auto& histories) { histories.restore(mesh, index); });
   }
   scalar time() const { return time_; }
 
@@ -276,12 +281,7 @@ class WindowStartState {
   pointField points_;
   std::unique_ptr<scalarField> old_volumes_;
   std::unique_ptr<FieldHistory<surfaceScalarField>> mesh_flux_;
-  FieldHistories<volScalarField> vol_scalars_;
-  FieldHistories<volVectorField> vol_vectors_;
-  FieldHistories<volSymmTensorField> vol_symm_tensors_;
-  FieldHistories<surfaceScalarField> surface_scalars_;
-  FieldHistories<surfaceVectorField> surface_vectors_;
-  FieldHistories<pointVectorField> point_vectors_;
+  EveryFieldType<FieldHistories> fields_;
 };
 
 }  // namespace cocopp::openfoam
