@@ -32,6 +32,7 @@ figures=(
   "turek_hron_fsi2_level2|OpenFOAM (2 MPI ranks) and CalculiX|60 min|docs/validation-turek-hron.md"
   "turek_hron_fsi3|OpenFOAM and CalculiX|30 min|docs/validation-turek-hron.md"
   "turek_hron_fsi3_bench|turek_hron_fsi3's run|45 min|docs/validation-turek-hron.md"
+  "turek_hron_substeps|OpenFOAM and CalculiX|13 min|docs/coupling.md"
 )
 
 publish() {  # publish <file under results/> <name in docs/images>
@@ -129,6 +130,12 @@ make_turek_hron_fsi3_bench() {  # after turek_hron_fsi3: its run at 8 s is the b
   "$cocopp" bench --no-plot "$example/bench_fsi3.yaml"
   "$python" "$example/bench_residuals.py" "$example/results/bench_fsi3"
   publish "$example/results/bench_fsi3/residuals.png" turek-hron-fsi3-residuals.png
+}
+
+make_turek_hron_substeps() {  # the fluid at its own time step: six runs of FSI3's first second
+  local example="$root/examples/turek_hron/fsi"
+  "$python" "$example/substeps.py"
+  publish "$example/results/substeps.png" turek-hron-substeps.png
 }
 
 if [ $# -eq 0 ] || [ "$1" = --help ] || [ "$1" = -h ]; then

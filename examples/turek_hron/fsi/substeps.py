@@ -10,11 +10,14 @@
 
 then the tip displacement u(A) of each against the reference at the runs' coupling steps
 (relative L2 over the second half, from 0.5 s, and the largest difference), iterations per
-coupling step, the fluid's steps per coupling iteration and the wall time.
+coupling step, the fluid's steps per coupling iteration and the wall time; and draws the error
+against the wall time and against the fluid's steps (results/substeps.png, the figure of
+docs/coupling.md's "Substeps": scripts/make_doc_figures.sh turek_hron_substeps).
 
     /usr/bin/python3 examples/turek_hron/fsi/substeps.py [--end-time 1] [--only NAME ...]
 
-Writes examples/turek_hron/fsi/results/substeps_<name>/ (run.sh) and results/substeps.json.
+Writes examples/turek_hron/fsi/results/substeps_<name>/ (run.sh), results/substeps.json and
+results/substeps.png.
 """
 import argparse
 import json
@@ -79,6 +82,42 @@ def compare(name, reference, seconds, end_time):
     }
 
 
+LABELS = {"every_step": "both at 1 ms (every fluid step coupled)",
+          "both_2ms": "both at 2 ms",
+          "fluid_2": "fluid 1 ms, flag 2 ms (2 substeps)",
+          "fluid_4": "fluid 1 ms, flag 4 ms (4 substeps)",
+          "fluid_8": "fluid 1 ms, flag 8 ms (8 substeps)"}
+
+
+def plot(rows, output):
+    """The error of u(A) against the wall time and against the fluid's steps in all."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    figure, (by_time, by_steps) = plt.subplots(1, 2, figsize=(10, 4.8), sharey=True)
+    for row in rows:
+        fluid_steps = (row["coupling_steps"] * row["iterations_per_step"] *
+                       row["fluid_steps_per_coupling_iteration"])
+        marker = "s" if row["name"].startswith("fluid_") else "o"
+        for axes, x in ((by_time, row["wall_time_s"]), (by_steps, fluid_steps)):
+            axes.semilogy(x, row["relative_error_uA"], marker, markersize=8,
+                        label=LABELS.get(row["name"], row["name"]))
+    by_time.set_xlabel("wall time (s, 2 cores)")
+    by_steps.set_xlabel("fluid time steps solved (all coupling iterations)")
+    by_time.set_ylabel("error of u(A), relative L2 over 0.5-1 s")
+    for axes in (by_time, by_steps):
+        axes.grid(True, which="both", alpha=0.3)
+    by_time.set_xlim(left=0)
+    by_steps.set_xlim(left=0)
+    handles, labels = by_time.get_legend_handles_labels()
+    figure.legend(handles, labels, fontsize=8, loc="lower center", ncol=3)
+    figure.suptitle("Turek-Hron FSI3, level 1, first second: the fluid at its own time step")
+    figure.tight_layout(rect=(0, 0.1, 1, 1))
+    figure.savefig(output, dpi=110)
+    plt.close(figure)
+    print(f"wrote {output}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--end-time", type=float, default=1.0)
@@ -109,6 +148,7 @@ def main():
               f"{row['fluid_steps_per_coupling_iteration']:14d} {row['relative_error_uA']:11.3e} "
               f"{row['largest_difference_uA_m']:12.3e} {row['wall_time_s']:9.1f}")
     (HERE / "results" / "substeps.json").write_text(json.dumps(rows, indent=1) + "\n")
+    plot(rows, HERE / "results" / "substeps.png")
 
 
 if __name__ == "__main__":
