@@ -16,6 +16,7 @@
 #include <unordered_map>
 
 #include "core/case/suggest.hpp"
+#include "core/case/syntax_slips.hpp"
 
 namespace cocopp {
 
@@ -55,6 +56,10 @@ void check_keys(const YAML::Node& node, const std::filesystem::path& file,
     // A copy: yaml-cpp's iterator hands out a temporary pair, whose members die with it.
     const YAML::Node key = it->first;
     const std::string where = path.empty() ? "" : " in '" + path + "'";
+    if (key.IsNull())
+      throw CaseError(location(file, key.Mark()) + ": a key" + where +
+                      " is empty or null (~, null or nothing before the colon): keys are "
+                      "plain names");
     if (!key.IsScalar())
       throw CaseError(location(file, key.Mark()) + ": a key" + where +
                       " is a list or a mapping: keys are plain names");
@@ -154,6 +159,8 @@ Settings Settings::load_string(const std::string& text, const std::string& file_
   auto document = std::make_shared<Document>();
   document->file = file_name;
   check_is_text(text, file_name);
+  check_utf8(text, file_name);
+  check_json(text, file_name);
   YAML::Node root;
   std::optional<YAML::Mark> second_document;
   try {
@@ -165,6 +172,10 @@ Settings Settings::load_string(const std::string& text, const std::string& file_
                     ": lists and mappings nested more than 500 deep: a case file needs a few "
                     "levels; look for brackets or indentation that never close");
   } catch (const YAML::Exception& e) {
+    // yaml-cpp names most indentation slips "end of map not found" or "illegal map value":
+    // say which line is out of line instead, where the indentation tells.
+    if (const auto slip = indentation_slip(text, e.mark.line))
+      throw CaseError(file_name + ":" + *slip);
     throw CaseError(location(file_name, e.mark) + ": syntax error: " + e.msg);
   }
   if (!root.IsMap())
@@ -172,10 +183,13 @@ Settings Settings::load_string(const std::string& text, const std::string& file_
                     ": the file must hold a mapping of keys (YAML) or an object (JSON)");
   // Content after the first document (a second YAML document, text after the JSON object)
   // would be ignored silently.
-  if (second_document)
+  if (second_document) {
+    if (const auto slip = indentation_slip(text, second_document->line))
+      throw CaseError(file_name + ":" + *slip);
     throw CaseError(location(file_name, *second_document) +
                     ": content after the end of the case (a second YAML document, or text "
                     "after the JSON object): a case file holds one; remove it");
+  }
   check_keys(root, file_name, "");
   return Settings(document, root, "");
 }
