@@ -115,7 +115,8 @@ def decompose_par_dict(cores):
             f"simpleCoeffs\n{{\n    n               ({cores} 1 1);\n    delta           0.001;\n}}\n")
 
 
-def fluid_files(test, level, dt, end_time, depth, pressure_rel_tol=0.0, cores=1):
+def fluid_files(test, level, dt, end_time, depth, pressure_rel_tol=0.0, cores=1,
+                outer_correctors=1):
     # cfd3: the flag a fixed wall on a static mesh, for OpenFOAM's own pimpleFoam (no coupler).
     rigid = test == "cfd3"
     flag_velocity = ("{ type noSlip; }" if rigid
@@ -181,8 +182,10 @@ def fluid_files(test, level, dt, end_time, depth, pressure_rel_tol=0.0, cores=1)
         "        relTol          0;\n    }\n    \"(cellDisplacement|cellDisplacementFinal)\"\n    {\n"
         "        solver          PCG;\n        preconditioner  DIC;\n        tolerance       1e-12;\n"
         "        relTol          0;\n    }\n}\n\n"
-        "// PISO within each coupling iteration: one outer corrector, three pressure correctors.\n"
-        "PIMPLE\n{\n    nOuterCorrectors 1;\n    nCorrectors     3;\n"
+        "// Within each coupling iteration: outer correctors (1: PISO, whose pressure-velocity\n"
+        "// splitting is first order in time; make_case.py --outer-correctors), three pressure\n"
+        "// correctors each.\n"
+        f"PIMPLE\n{{\n    nOuterCorrectors {outer_correctors};\n    nCorrectors     3;\n"
         "    nNonOrthogonalCorrectors 1;\n    correctPhi      yes;\n}\n",
     }
     files.update(inlet_boundary_data(MEAN_INFLOW[test], depth))
@@ -267,6 +270,7 @@ def write_made(args, dt, end_time):
         {"test": args.test, "level": args.level, "dt": dt, "end_time": end_time,
          "depth": args.depth, "q": args.q, "tolerance": args.tolerance,
          "alpha": args.alpha, "pressure_rel_tol": args.pressure_rel_tol,
+         "outer_correctors": args.outer_correctors,
          "cores": args.cores, "fluid_substeps": args.fluid_substeps}, indent=1) + "\n")
 
 
@@ -286,6 +290,9 @@ def main():
     parser.add_argument("--pressure-rel-tol", type=float, default=0.0,
                         help="relative tolerance of the pressure correctors before the last "
                              "(0: every one to 1e-10)")
+    parser.add_argument("--outer-correctors", type=int, default=1,
+                        help="PIMPLE's nOuterCorrectors (1: PISO; 2 takes out PISO's splitting "
+                             "error, docs/validation-turek-hron.md, CFD3)")
     parser.add_argument("--cores", type=int, default=1,
                         help="MPI ranks of the fluid (the coupled tests; decomposeParDict)")
     parser.add_argument("--fluid-substeps", type=int, default=1,
@@ -298,7 +305,8 @@ def main():
     command = "make_case.py " + " ".join(sys.argv[1:])
     openfoam.write_case(args.output / "fluid",
                         fluid_files(args.test, args.level, dt / args.fluid_substeps, end_time,
-                                    args.depth, args.pressure_rel_tol, args.cores))
+                                    args.depth, args.pressure_rel_tol, args.cores,
+                                    args.outer_correctors))
     if args.test == "cfd3":
         write_made(args, dt, end_time)
         print(f"make_case.py: {args.output}: cfd3 (the fluid alone, fluid/Allrun), level "
