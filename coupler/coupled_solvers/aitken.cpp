@@ -53,6 +53,14 @@ class Aitken : public CoupledSolver {
       scaling_.load_state(state.group("scaling"));
   }
 
+  std::string divergence_advice() const override {
+    return fmt::format(
+        "Aitken's factor follows the last two residuals and can overshoot: cap it lower "
+        "(omega_max {:g}; try {:g}), or use a quasi-Newton method (coupled_solver type 'iqni' "
+        "with model 'ls'), or take a smaller delta_t.",
+        omega_max_, omega_max_ / 10);
+  }
+
   std::string describe_settings() const override {
     const std::string scaling = scaling_.enabled() ? ", scaling " + scaling_.describe() : "";
     return fmt::format("omega_max {:g}{}", omega_max_, scaling);

@@ -342,6 +342,15 @@ Eigen::MatrixXd CoupledSolver::predictor_history(const Eigen::MatrixXd& saved, b
       side_by_side() ? " and [" + y().describe() + "], scheme parallel" : ""));
 }
 
+std::string CoupledSolver::quasi_newton_advice(double omega) {
+  return fmt::format(
+      "A quasi-Newton method diverges from a poor first update or from secant information that "
+      "no longer fits: relax the first update more (omega {:g}; try {:g}), reuse fewer earlier "
+      "steps (the model's q) or drop noisy columns (min_significant), or take a smaller "
+      "delta_t.",
+      omega, omega / 10);
+}
+
 std::string CoupledSolver::divergence_advice() const {
   return "Strongly coupled problems (light structures, dense fluids) need a quasi-Newton "
          "method: try coupled_solver type 'iqni' with model 'ls', or 'aitken', or a smaller "

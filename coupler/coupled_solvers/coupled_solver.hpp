@@ -140,8 +140,11 @@ class CoupledSolver {
   virtual Eigen::VectorXd first_input(const Eigen::VectorXd& predicted) { return predicted; }
   /// The type's own settings for describe(), e.g. "omega 0.05".
   virtual std::string describe_settings() const { return ""; }
-  /// What to suggest when this method diverges.
+  /// What to suggest when this method diverges: by default, to a method without a model
+  /// (relaxation, Gauss-Seidel), a quasi-Newton method.
   virtual std::string divergence_advice() const;
+  /// The advice for a quasi-Newton method with first relaxation `omega`: it already is one.
+  static std::string quasi_newton_advice(double omega);
 
   /// Whether this type can iterate on a window of substeps (its unknown x over the window):
   /// not one that updates S's loads itself (ibqn) or models x = S(F(x)) with a surrogate of

@@ -139,6 +139,8 @@ class Ibqn : public CoupledSolver {
     scaling_.load_state(state.group("scaling"));
   }
 
+  std::string divergence_advice() const override { return quasi_newton_advice(omega_); }
+
   std::string describe_settings() const override {
     const std::string scaling = scaling_.enabled() ? ", scaling " + scaling_.describe() : "";
     const std::string residual = coupled_residual_ ? ", convergence_residual coupled" : "";

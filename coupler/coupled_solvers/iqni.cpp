@@ -99,6 +99,8 @@ class Iqni : public CoupledSolver {
     scaling_.load_state(state.group("scaling"));
   }
 
+  std::string divergence_advice() const override { return quasi_newton_advice(omega_); }
+
   std::string describe_settings() const override {
     const std::string scaling = scaling_.enabled() ? ", scaling " + scaling_.describe() : "";
     const std::string mixing = mixing_ == 1.0 ? "" : fmt::format(", mixing {:g}", mixing_);

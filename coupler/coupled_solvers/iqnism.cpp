@@ -178,6 +178,8 @@ class Iqnism : public CoupledSolver {
     last_surrogate_solution_ = state.group("surrogate_prediction").matrix("last_solution").col(0);
   }
 
+  std::string divergence_advice() const override { return quasi_newton_advice(omega_); }
+
   std::string describe_settings() const override {
     std::string solvers;
     for (const auto& solver : surrogate_solvers_)

@@ -291,6 +291,33 @@ TEST(CoupledSolvers, NonFiniteSolverOutputNamesTheSolver) {
   }
 }
 
+// Issue 51: the advice follows the method the run uses; a quasi-Newton run is not told to
+// use one.
+TEST(CoupledSolvers, DivergenceAdviceFollowsTheMethod) {
+  const auto advice = [](const std::string& type) {
+    Problem problem(4, -0.5, 0.5);
+    problem.flow->poison_at_call = 2;
+    auto coupled = make(type);
+    coupled->initialize(*problem.flow, *problem.structure);
+    try {
+      coupled->solve_step(1, 0.1);
+    } catch (const DivergenceError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no divergence reported");
+  };
+  const std::string iqni = advice("type: iqni\nomega: 0.05\nmodel: {type: ls, q: 10}");
+  EXPECT_EQ(iqni.find("try coupled_solver type 'iqni'"), std::string::npos) << iqni;
+  EXPECT_NE(iqni.find("relax the first update more (omega 0.05; try 0.005)"), std::string::npos)
+      << iqni;
+  const std::string aitken = advice("type: aitken\nomega_max: 0.5");
+  EXPECT_NE(aitken.find("cap it lower (omega_max 0.5; try 0.05)"), std::string::npos) << aitken;
+  const std::string relaxation = advice("type: relaxation\nomega: 0.5");
+  EXPECT_NE(relaxation.find("need a quasi-Newton method: try coupled_solver type 'iqni'"),
+            std::string::npos)
+      << relaxation;
+}
+
 TEST(CoupledSolvers, MismatchedInterfacesAreReported) {
   auto part = cocopp::testing::line_model_part(3);
   auto other = cocopp::testing::line_model_part(4);
