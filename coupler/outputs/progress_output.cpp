@@ -9,8 +9,10 @@ namespace cocopp {
 
 namespace {
 
-/// "42 s", "3 min 20 s", "2 h 05 min".
+/// "0.2 s", "4.7 s", "42 s", "3 min 20 s", "2 h 05 min": tenths below 10 s, so that a short
+/// run does not say "0 s" left.
 std::string duration(double seconds) {
+  if (seconds < 9.95) return fmt::format("{:.1f} s", seconds);
   const long s = std::lround(seconds);
   if (s < 60) return fmt::format("{} s", s);
   if (s < 3600) return fmt::format("{} min {:02} s", s / 60, s % 60);

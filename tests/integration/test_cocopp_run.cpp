@@ -27,6 +27,9 @@ TEST(CocoppRun, FlowStructureTubeConvergesWithIqnIls) {
             std::string::npos)
       << run.output;
   EXPECT_NE(run.output.find("  left "), std::string::npos);
+  // Issue 51: a run of well under a second says how much of it is left in tenths, not "0 s".
+  EXPECT_NE(run.output.find("  left 0."), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find("  left 0 s"), std::string::npos) << run.output;
   EXPECT_NE(run.output.find("completed after 100 time steps"), std::string::npos);
   EXPECT_NE(run.output.find("per coupling iteration"), std::string::npos);
 
