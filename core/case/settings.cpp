@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -69,26 +68,6 @@ void check_keys(const YAML::Node& node, const std::filesystem::path& file,
                       " is given twice (first at line " + std::to_string(first->second.line + 1) +
                       "): only one of them would count; remove the other");
     check_keys(it->second, file, path.empty() ? key.Scalar() : path + "." + key.Scalar());
-  }
-}
-
-/// A case file is text: a NUL or another control character (but tab, line feed and carriage
-/// return) means a binary or damaged file, and yaml-cpp's LoadAll loops for ever after a NUL.
-void check_is_text(const std::string& text, const std::filesystem::path& file) {
-  int line = 1;
-  std::size_t line_start = 0;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const auto c = static_cast<unsigned char>(text[i]);
-    if (c == '\n') {
-      ++line;
-      line_start = i + 1;
-    } else if ((c < 0x20 && c != '\t' && c != '\r') || c == 0x7f) {
-      char byte[8];
-      std::snprintf(byte, sizeof byte, "0x%02x", c);
-      throw CaseError(file.string() + ":" + std::to_string(line) + ":" +
-                      std::to_string(i - line_start + 1) + ": a control character (byte " + byte +
-                      "): a case file is text (YAML or JSON); is this the right file?");
-    }
   }
 }
 
@@ -158,8 +137,7 @@ Settings Settings::load_file(const std::filesystem::path& file) {
 Settings Settings::load_string(const std::string& text, const std::string& file_name) {
   auto document = std::make_shared<Document>();
   document->file = file_name;
-  check_is_text(text, file_name);
-  check_utf8(text, file_name);
+  check_text(text, file_name);
   check_json(text, file_name);
   YAML::Node root;
   std::optional<YAML::Mark> second_document;

@@ -228,16 +228,21 @@ std::string shown(const std::string& text) {
 
 }  // namespace
 
-void check_utf8(const std::string& text, const std::string& file_name) {
+void check_text(const std::string& text, const std::string& file_name) {
   for (std::size_t i = 0; i < text.size();) {
-    const std::size_t length = utf8_length(text, i);
+    const auto c = static_cast<unsigned char>(text[i]);
+    const bool control = (c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7f;
+    const std::size_t length = control ? 0 : utf8_length(text, i);
     if (length == 0) {
       char byte[8];
-      std::snprintf(byte, sizeof byte, "0x%02x", static_cast<unsigned char>(text[i]));
-      throw CaseError(file_name + ":" + position_of(text, i) + ": a byte that is not UTF-8 (" +
-                      byte +
-                      "): a case file is UTF-8 text; was it saved in another encoding "
-                      "(Latin-1, Windows-1252)?");
+      std::snprintf(byte, sizeof byte, "0x%02x", c);
+      throw CaseError(file_name + ":" + position_of(text, i) +
+                      (control ? std::string(": a control character (byte ") + byte +
+                                     "): a case file is text (YAML or JSON); is this the right "
+                                     "file?"
+                               : std::string(": a byte that is not UTF-8 (") + byte +
+                                     "): a case file is UTF-8 text; was it saved in another "
+                                     "encoding (Latin-1, Windows-1252)?"));
     }
     i += length;
   }

@@ -1,15 +1,18 @@
 #pragma once
 // The slips a hand-written case file most often has, named in words at their line: bytes that
-// are not UTF-8, JSON that is not JSON (a trailing or a missing comma, a comment), and the YAML
-// indentation slips yaml-cpp reports as "end of map not found" or "illegal map value".
+// are not text or not UTF-8, JSON that is not JSON (a trailing or a missing comma, a comment),
+// and the YAML indentation slips yaml-cpp reports as "end of map not found" or "illegal map
+// value".
 
 #include <optional>
 #include <string>
 
 namespace cocopp {
 
-/// Throws CaseError "file:line:col: ..." at the first byte sequence that is not UTF-8.
-void check_utf8(const std::string& text, const std::string& file_name);
+/// A case file is UTF-8 text: throws CaseError "file:line:col: ..." at a NUL or another
+/// control character but tab, line feed and carriage return (a binary or damaged file; yaml-cpp's
+/// LoadAll loops for ever after a NUL), and at the first byte sequence that is not UTF-8.
+void check_text(const std::string& text, const std::string& file_name);
 
 /// A file named *.json must be JSON (yaml-cpp would take YAML's extensions of it: a trailing
 /// comma, a comment): throws CaseError at the first thing JSON does not allow, in words.

@@ -55,15 +55,20 @@ def pimple(fluid):
     return time.perf_counter() - started
 
 
+def start_at(fluid, start):
+    """controlDict's startTime set to `start` (its time directory is the caller's)."""
+    control = fluid / "system/controlDict"
+    control.write_text(re.sub(r"(?m)^startTime .*$", f"startTime       {start:g};",
+                              control.read_text()))
+
+
 def continue_from(settled, directory, level, dt, outer, start, end):
     """A variant's case: made as CFD3, with the settled run's fields at `start`."""
     make(directory, level, dt, end, outer)
     fluid = directory / "fluid"
     subprocess.run([str(fluid / "Allmesh")], check=True)
     shutil.copytree(settled / "fluid" / f"{start:g}", fluid / f"{start:g}")
-    control = fluid / "system/controlDict"
-    control.write_text(re.sub(r"(?m)^startTime .*$", f"startTime       {start:g};",
-                              control.read_text()))
+    start_at(fluid, start)
     return pimple(fluid)
 
 
@@ -73,9 +78,7 @@ def on_level_2(source, directory, start, span):
     fluid = directory / "fluid"
     subprocess.run([str(fluid / "Allmesh")], check=True)
     shutil.copytree(fluid / "0", fluid / f"{start:g}")
-    control = fluid / "system/controlDict"
-    control.write_text(re.sub(r"(?m)^startTime .*$", f"startTime       {start:g};",
-                              control.read_text()))
+    start_at(fluid, start)
     with open(fluid / "log.mapFields", "w") as log:
         subprocess.run(["mapFields", str(source / "fluid"), "-consistent", "-sourceTime",
                         "latestTime"], cwd=fluid, env=ENV, stdout=log, stderr=subprocess.STDOUT,

@@ -23,6 +23,11 @@ std::string error_of(F f) {
   return "";
 }
 
+/// The message of the CaseError loading `text` as the file `name` throws ("" if none).
+std::string loading_error(const std::string& text, const std::string& name) {
+  return error_of([&] { Settings::load_string(text, name); });
+}
+
 const char* kYaml = R"(settings:
   delta_t: 0.001
   number_of_timesteps: 10
@@ -264,9 +269,8 @@ TEST(Settings, OnlyARegularFileOfReasonableSizeIsRead) {
 
 // Issue 51: the slips of a hand-written case file, said in words at their line.
 TEST(SyntaxSlips, ATabInTheIndentationIsNamedAtItsColumn) {
-  const std::string message = error_of([] {
-    Settings::load_string("settings:\n  delta_t: 1\n\tnumber_of_timesteps: 2\n", "t.yaml");
-  });
+  const std::string message =
+      loading_error("settings:\n  delta_t: 1\n\tnumber_of_timesteps: 2\n", "t.yaml");
   EXPECT_NE(message.find("t.yaml:3:1: a tab character in the indentation of line 3: YAML indents "
                          "with spaces only"),
             std::string::npos)
@@ -274,8 +278,8 @@ TEST(SyntaxSlips, ATabInTheIndentationIsNamedAtItsColumn) {
 }
 
 TEST(SyntaxSlips, ALineIndentedMoreThanAKeyWithAValueNamesBothLines) {
-  const std::string message = error_of(
-      [] { Settings::load_string("coupled_solver:\n  type: iqni\n    omega: 0.05\n", "i.yaml"); });
+  const std::string message =
+      loading_error("coupled_solver:\n  type: iqni\n    omega: 0.05\n", "i.yaml");
   EXPECT_NE(message.find("i.yaml:3:5: line 3 is indented more (4 spaces) than line 2 above it (2 "
                          "spaces), whose key already has its value ('type: iqni')"),
             std::string::npos)
@@ -283,9 +287,8 @@ TEST(SyntaxSlips, ALineIndentedMoreThanAKeyWithAValueNamesBothLines) {
 }
 
 TEST(SyntaxSlips, ALineIndentedToNoMappingNamesTheColumnsItCouldTake) {
-  const std::string message = error_of([] {
-    Settings::load_string("coupled_solver:\n  type: iqni\n # a comment\n omega: 0.05\n", "d.yaml");
-  });
+  const std::string message =
+      loading_error("coupled_solver:\n  type: iqni\n # a comment\n omega: 0.05\n", "d.yaml");
   EXPECT_NE(message.find("d.yaml:4:2: line 4 is indented by 1 space, which lines it up with none "
                          "of the mappings above it (their keys start in columns 1, 3)"),
             std::string::npos)
@@ -294,9 +297,8 @@ TEST(SyntaxSlips, ALineIndentedToNoMappingNamesTheColumnsItCouldTake) {
 
 TEST(SyntaxSlips, TopLevelKeysIndentedUnlikeTheFirstArePointedAt) {
   // The first key indented: YAML ends the document at the next key in column 1.
-  const std::string message = error_of([] {
-    Settings::load_string("  settings:\n  delta_t: 1\ncoupled_solver:\n  type: iqni\n", "s.yaml");
-  });
+  const std::string message =
+      loading_error("  settings:\n  delta_t: 1\ncoupled_solver:\n  type: iqni\n", "s.yaml");
   EXPECT_NE(message.find("s.yaml:3:1: line 3 starts further left (column 1) than the file's first "
                          "key (line 1, column 3)"),
             std::string::npos)
@@ -306,27 +308,19 @@ TEST(SyntaxSlips, TopLevelKeysIndentedUnlikeTheFirstArePointedAt) {
 TEST(SyntaxSlips, ListsFlowValuesAndBlockScalarsAreNotSlips) {
   // A syntax error of another kind after well-indented lists, flow values and a block scalar
   // keeps yaml-cpp's own words.
-  const std::string message = error_of([] {
-    Settings::load_string(
-        "solver_wrappers:\n  - type: a\n    name: b\n    flags: {x: 1, y: [1, 2]}\n"
-        "  - type: c\n    text: |\n      free\n        text\n    name: d\ncriteria:\n- a: 1\n"
-        "  b: 2\nlast: [1, 2\n",
-        "ok.yaml");
-  });
+  const std::string lists =
+      "solver_wrappers:\n  - type: a\n    name: b\n    flags: {x: 1, y: [1, 2]}\n"
+      "  - type: c\n    text: |\n      free\n        text\n    name: d\ncriteria:\n- a: 1\n"
+      "  b: 2\n";
+  const std::string message = loading_error(lists + "last: [1, 2\n", "ok.yaml");
   EXPECT_NE(message.find("ok.yaml:"), std::string::npos) << message;
   EXPECT_NE(message.find("syntax error"), std::string::npos) << message;
   // The same text without the slip at its end is a case.
-  EXPECT_NO_THROW(Settings::load_string(
-      "solver_wrappers:\n  - type: a\n    name: b\n    flags: {x: 1, y: [1, 2]}\n"
-      "  - type: c\n    text: |\n      free\n        text\n    name: d\ncriteria:\n- a: 1\n"
-      "  b: 2\n",
-      "ok.yaml"));
+  EXPECT_NO_THROW(Settings::load_string(lists, "ok.yaml"));
 }
 
 TEST(SyntaxSlips, JsonIsStrict) {
-  const auto error = [](const std::string& text) {
-    return error_of([&] { Settings::load_string(text, "c.json"); });
-  };
+  const auto error = [](const std::string& text) { return loading_error(text, "c.json"); };
   const std::string trailing = error("{\n  \"a\": 1,\n  \"b\": 2,\n}\n");
   EXPECT_NE(trailing.find("c.json:3:9: a comma before the closing '}' at 4:1: JSON allows no "
                           "trailing comma"),
@@ -346,23 +340,18 @@ TEST(SyntaxSlips, JsonIsStrict) {
 }
 
 TEST(SyntaxSlips, BytesThatAreNotUtf8AreNamedAtTheirPosition) {
-  const std::string message =
-      error_of([] { Settings::load_string("a: 1  # caf\xe9\nb: 2\n", "u.yaml"); });
+  const std::string message = loading_error("a: 1  # caf\xe9\nb: 2\n", "u.yaml");
   EXPECT_NE(message.find("u.yaml:1:12: a byte that is not UTF-8 (0xe9)"), std::string::npos)
       << message;
   EXPECT_NO_THROW(
       Settings::load_string("a: 1  # caf\xc3\xa9 \xe2\x86\x92 \xf0\x9f\x98\x80\n", "u.yaml"));
   // An overlong form and a surrogate are not UTF-8 either.
-  EXPECT_NE(error_of([] { Settings::load_string("a: \xc0\xaf\n", "u.yaml"); }).find("not UTF-8"),
-            std::string::npos);
-  EXPECT_NE(
-      error_of([] { Settings::load_string("a: \xed\xa0\x80\n", "u.yaml"); }).find("not UTF-8"),
-      std::string::npos);
+  EXPECT_NE(loading_error("a: \xc0\xaf\n", "u.yaml").find("not UTF-8"), std::string::npos);
+  EXPECT_NE(loading_error("a: \xed\xa0\x80\n", "u.yaml").find("not UTF-8"), std::string::npos);
 }
 
 TEST(SyntaxSlips, ANullKeyIsCalledSo) {
-  const std::string message =
-      error_of([] { Settings::load_string("coupled_solver:\n  ~: 0.05\n", "n.yaml"); });
+  const std::string message = loading_error("coupled_solver:\n  ~: 0.05\n", "n.yaml");
   EXPECT_NE(message.find("n.yaml:2:3: a key in 'coupled_solver' is empty or null"),
             std::string::npos)
       << message;
