@@ -7,12 +7,15 @@ signalled or killed (and then restarted), a solver that breaks the protocol (scr
 one case at once, links planted at the names cocopp writes, a results directory that fills up.
 Then it checks what a user would check:
 
-  clean      the run ended by itself with exit code 0, 1 or 2 and, when not 0, an "error:" line
+  clean      the run ended by itself with exit code 0, 1, 2 or 3 and, when not 0 or 3, an
+             "error:" line
   crash      the coupler died of a signal it was not sent, aborted, or a sanitizer reported
   hang       the coupler was still running long after its timeouts
   orphan     a process started by the run was still alive after the coupler ended
-  data lost  a step the coupler reported done is not in a readable results file, or a planted
-             link's target was written
+  data lost  a step the coupler reported done is not in a readable results file (with results
+             written in batches: more than the last batch of 100 steps), the summary counts
+             more steps written than the file holds (where the disk filled up: other than it
+             holds), or a planted link's target was written
 
 and prints one row per scenario. Exit code 1 if any trial crashed, hung, left an orphan or lost
 data (in the scenarios run), 0 otherwise.
@@ -24,6 +27,7 @@ Needs h5py (Debian's python3-h5py) and the built cocopp (--bin, default: the one
 cocopp finds, cocopp.executable).
 """
 import argparse
+import json
 import os
 import random
 import re
@@ -40,11 +44,12 @@ from cocopp.results import ResultsFile, ResultsFileError, results_path
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 STEPS = 400
+BATCH_STEPS = 100  # results_write_interval > 0: a batch is written at least this often
 SOLVER_TIMEOUT = 2.0  # s: a stopped solver is reported after this
 HANG_LIMIT = 60.0     # s: a coupler still running after this hangs
 
 
-def case_text(steps=STEPS, flow=None, transport="pipe", state_interval=0):
+def case_text(steps=STEPS, flow=None, transport="pipe", state_interval=0, write_interval=0.0):
     """The tube case of every trial; `flow` replaces the flow solver (its type, name, ...)."""
     flow = flow or {"type": "tube_flow", "name": "flow", "working_directory": "flow"}
     structure = {"type": "tube_structure", "name": "structure", "working_directory": "structure"}
@@ -53,7 +58,8 @@ def case_text(steps=STEPS, flow=None, transport="pipe", state_interval=0):
                 {"type": "iteration_limit", "maximum": 15}]
     return case.dump({
         "settings": case.flow({"delta_t": 1.0e-4, "number_of_timesteps": steps,
-                               "state_interval": state_interval}),
+                               "state_interval": state_interval,
+                               "results_write_interval": write_interval}),
         "coupled_solver": {
             "type": "iqni", "omega": 0.05,
             "model": case.flow({"type": "ls", "q": 10, "min_significant": 1.0e-12}),
@@ -121,6 +127,14 @@ class Trial:
         steps = re.findall(r"^step +(\d+) /", text, re.M)
         return int(steps[-1]) if steps else 0
 
+    def summary(self):
+        """The run's summary (None: none, or not readable)."""
+        path = results_path(self.case).with_suffix(".summary.json")
+        try:
+            return json.loads(path.read_text())
+        except (OSError, ValueError):
+            return None
+
     def results_steps(self):
         """Steps in the results file, None if there is none or it cannot be read."""
         path = results_path(self.case)
@@ -167,8 +181,9 @@ CRASH_MARKS = ("terminate called", "Aborted", "AddressSanitizer", "runtime error
                "Segmentation fault", "core dumped")
 
 
-def judge(trial, code, hung, text, killed_coupler=False, expect_completed=False):
-    """The row entries of one trial: clean, crash, hang, orphan, data_lost (0 or 1 each)."""
+def judge(trial, code, hung, text, killed_coupler=False, expect_completed=False, may_lose=0):
+    """The row entries of one trial: clean, crash, hang, orphan, data_lost (0 or 1 each);
+    `may_lose`: reported steps that may be missing from the file (a batch not yet written)."""
     result = dict(clean=0, crash=0, hang=0, orphan=0, data_lost=0)
     if hung:
         result["hang"] = 1
@@ -178,11 +193,15 @@ def judge(trial, code, hung, text, killed_coupler=False, expect_completed=False)
         result["orphan"] = 1
     reported = trial.last_reported_step(text)
     written = trial.results_steps()
-    if reported > 0 and (written is None or written < reported):
+    if reported > 0 and (written is None or written < reported - may_lose):
+        result["data_lost"] = 1
+    # The summary's count of this run's steps in the file (a restart's file holds more).
+    counted = (trial.summary() or {}).get("steps_written")
+    if counted is not None and (written is None or counted > written):
         result["data_lost"] = 1
     if expect_completed and code != 0:
         result["data_lost"] = 1
-    ended_cleanly = killed_coupler or (code in (0, 1, 2) and (code == 0 or "error:" in text))
+    ended_cleanly = killed_coupler or (code in (0, 1, 2, 3) and (code in (0, 3) or "error:" in text))
     if ended_cleanly and not any(result[k] for k in ("crash", "hang", "orphan", "data_lost")):
         result["clean"] = 1
     return result
@@ -230,6 +249,18 @@ def coupler_kill9(trial, rng):
     trial.process.kill()
     code, hung = trial.wait()
     return judge(trial, code, hung, trial.output(), killed_coupler=True)
+
+
+def coupler_kill9_batched(trial, rng):
+    """Killed at once with the steps written in batches (results_write_interval 1 s, as the tube
+    examples): at most the last batch, BATCH_STEPS steps, may be missing."""
+    trial.write_case(case_text(steps=3000, write_interval=1.0))
+    trial.start()
+    trial.wait_for_step(rng.randint(150, 1500))
+    time.sleep(rng.uniform(0, 0.01))
+    trial.process.kill()
+    code, hung = trial.wait()
+    return judge(trial, code, hung, trial.output(), killed_coupler=True, may_lose=BATCH_STEPS)
 
 
 def coupler_kill9_restart(trial, rng):
@@ -327,10 +358,18 @@ def disk_full(trial, rng):
     if mounted.returncode != 0:
         return None  # not root, or no mount here: skipped
     try:
-        trial.write_case(case_text(steps=2000))
+        # Written step by step, or in batches of up to a second (BATCH_STEPS steps): a batch
+        # that does not fit is written as far as it fits, and the summary says how far.
+        batched = rng.random() < 0.5
+        trial.write_case(case_text(steps=2000, write_interval=1.0 if batched else 0.0))
         trial.start()
         code, hung = trial.wait()
-        return judge(trial, code, hung, trial.output())
+        text = trial.output()
+        result = judge(trial, code, hung, text, may_lose=BATCH_STEPS if batched else 0)
+        written = trial.results_steps()
+        if not written or (trial.summary() or {}).get("steps_written") != written:
+            result["data_lost"], result["clean"] = 1, 0  # a batch dropped whole, or miscounted
+        return result
     finally:
         subprocess.run(["umount", "-l", results], capture_output=True)
 
@@ -342,6 +381,7 @@ SCENARIOS = {
     "coupler_signals": coupler_signals,
     "coupler_kill9": coupler_kill9,
     "coupler_kill9_restart": coupler_kill9_restart,
+    "coupler_kill9_batched": coupler_kill9_batched,
     "protocol_abuse": protocol_abuse,
     "concurrent_runs": concurrent_runs,
     "planted_links": planted_links,
@@ -371,7 +411,7 @@ def main():
     rng = random.Random(args.seed)
     work = tempfile.mkdtemp(prefix="cocopp_faults_")
     columns = ["clean", "crash", "hang", "orphan", "data_lost"]
-    print(f"{'scenario':<16} {'trials':>6} " + " ".join(f"{c:>9}" for c in columns))
+    print(f"{'scenario':<22} {'trials':>6} " + " ".join(f"{c:>9}" for c in columns))
     bad = 0
     for name in names:
         totals = dict.fromkeys(columns, 0)
@@ -388,10 +428,10 @@ def main():
                 print(f"  {name}: see {trial.dir}", file=sys.stderr)
                 args.keep = True
         if trials == 0:
-            print(f"{name:<16} {'skipped (needs root for a tmpfs mount)':>40}")
+            print(f"{name:<22} {'skipped (needs root for a tmpfs mount)':>40}")
             continue
         bad += sum(totals[c] for c in columns[1:]) + (trials - totals["clean"])
-        print(f"{name:<16} {trials:>6} " + " ".join(f"{totals[c]:>9}" for c in columns))
+        print(f"{name:<22} {trials:>6} " + " ".join(f"{totals[c]:>9}" for c in columns))
     if not args.keep:
         shutil.rmtree(work, ignore_errors=True)
     return 1 if bad else 0

@@ -126,10 +126,17 @@ BenchRow make_row(const PlannedRun& run, const RunReport& report) {
   row.wall_time = run.from_state ? summary.steps_wall_time() : summary.wall_time();
   row.coupler_time = summary.step_coupler_time();
   row.solver_time = summary.solver_time();
-  row.unconverged_steps = static_cast<int>(summary.unconverged_steps().size());
+  // Steps at the limit with the residual at the solvers' noise are no stall (the run's
+  // status says the same), but the note counts them.
+  const auto at_noise = static_cast<int>(summary.steps_at_noise().size());
+  row.unconverged_steps = static_cast<int>(summary.unconverged_steps().size()) - at_noise;
   if (row.unconverged_steps > 0)
     add_note(row, fmt::format("{} step{} accepted unconverged at the iteration limit",
                               row.unconverged_steps, row.unconverged_steps == 1 ? "" : "s"));
+  if (at_noise > 0)
+    add_note(row, fmt::format("{} step{} at the iteration limit with the residual at the "
+                              "solvers' noise",
+                              at_noise, at_noise == 1 ? "" : "s"));
   return row;
 }
 

@@ -23,9 +23,11 @@ int main(int argc, char** argv) {
       "run",
       "Run a case: start the solvers, march in time with the coupled solver, write "
       "<results_directory>/<name>.h5 (HDF5, docs/results.md) and <name>.summary.json. Prints "
-      "one progress line per time step (a * marks a step accepted at the iteration limit) and "
-      "a timing summary. Exit code 0: completed (or stalled: some steps accepted at the iteration "
-      "limit); 1: the run stopped (divergence, solver failure, interrupt, results that cannot "
+      "one progress line per time step (a * marks a step accepted at the iteration limit, a ~ one "
+      "accepted there with the residual at the solvers' noise) and a timing summary. Exit code 0: "
+      "completed; 3: stalled (every step computed, some accepted at the iteration limit above "
+      "the solvers' noise); 1: the run stopped (divergence, solver failure, interrupt, results "
+      "that cannot "
       "be written; results so far are kept) or did not start (another run holds the case, the "
       "results location cannot be used); 2: invalid case file or command line.");
   run->add_option("case", case_file, "case file (.yaml, .yml or .json)")

@@ -171,14 +171,26 @@ class Run {
       });
   }
 
-  /// Every step computed: completed, or stalled if some were accepted at the iteration limit.
+  /// Every step computed: completed, or stalled if some were accepted at the iteration limit
+  /// with the residual above the solvers' noise. Steps at the limit at the noise are said.
   RunOutcome went_through() const {
     RunOutcome outcome;
-    const auto& unconverged = summary().unconverged_steps();
-    if (unconverged.empty()) return outcome;
+    const std::size_t unconverged = summary().unconverged_steps().size();
+    const std::size_t at_noise = summary().steps_at_noise().size();
+    const std::string noise = at_noise == 0
+                                  ? ""
+                                  : fmt::format(
+                                        "{} step{} at the iteration limit with the residual at the "
+                                        "solvers' noise",
+                                        at_noise, at_noise == 1 ? "" : "s");
+    if (unconverged == at_noise) {
+      outcome.reason = noise;
+      return outcome;
+    }
     outcome.status = RunStatus::kStalled;
-    outcome.reason = fmt::format("{} of {} steps at the iteration limit", unconverged.size(),
-                                 summary().steps_completed());
+    outcome.reason = fmt::format("{} of {} steps at the iteration limit{}", unconverged - at_noise,
+                                 summary().steps_completed(),
+                                 noise.empty() ? "" : " above the solvers' noise, " + noise);
     return outcome;
   }
 
@@ -263,6 +275,11 @@ class Run {
       opened_.push_back(&summary_);
     for (RunOutput* output : opened_) {
       end.outcome = outcome;
+      // The summary, last, says how many steps the results file holds.
+      if (output == &summary_)
+        for (const RunOutput* other : opened_)
+          if (other != &summary_ && other->steps_written())
+            end.steps_written = other->steps_written();
       try {
         output->close(end);
       } catch (const std::exception& e) {
@@ -275,8 +292,13 @@ class Run {
 
   void print_report(const RunOutcome& outcome, const RunEnd& end, double own_solvers) const {
     const int steps = summary().steps_completed();
-    fmt::print("\n{} after {} time step{} in {:.3f} s{}\n", to_string(outcome.status), steps,
-               steps == 1 ? "" : "s", end.wall_time,
+    // A results file that could not take every step says so beside the count.
+    const std::string written =
+        end.steps_written && *end.steps_written != steps
+            ? fmt::format(" ({} of them in the results file)", *end.steps_written)
+            : "";
+    fmt::print("\n{} after {} time step{}{} in {:.3f} s{}\n", to_string(outcome.status), steps,
+               steps == 1 ? "" : "s", written, end.wall_time,
                outcome.reason.empty() ? "" : ": " + outcome.reason);
     auto line = [](const std::string& label, const std::string& text) {
       fmt::print("  {:<18}: {}\n", label, text);

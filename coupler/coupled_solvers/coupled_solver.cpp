@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "core/case/suggest.hpp"
 
@@ -194,6 +195,14 @@ StepRecord CoupledSolver::iterate_step(int step, double time) {
     u = next_input(u, ut, r);
   }
   if (iterates()) record.criterion_progress = progress();
+  if (iterates() && !tolerance_met && record.residual_norms.back() <= noise_floor()) {
+    record.at_noise = true;
+    notes.push_back(fmt::format(
+        "the iteration limit with the residual {:.3e} at the solvers' noise (below {:.1e}): the "
+        "criterion cannot be met there; the step is taken as it is (an absolute criterion above "
+        "the noise ends such steps at once)",
+        record.residual_norms.back(), noise_floor()));
+  }
   for (auto& note : take_notes()) notes.push_back(std::move(note));
   record.warnings = count_repeats(notes);
   record.converged = tolerance_met;
@@ -226,6 +235,21 @@ bool CoupledSolver::update_criteria(const Eigen::VectorXd& r, const Eigen::Vecto
   tolerance_met = criterion_->tolerance_met() && load_criterion_->tolerance_met();
   // An iteration limit in either criterion ends the step; a tolerance needs both.
   return tolerance_met || criterion_->limit_reached() || load_criterion_->limit_reached();
+}
+
+double CoupledSolver::noise_floor() const {
+  // The interface's size: the diagonal of the box around the displacement interface's points.
+  Eigen::RowVector3d low = Eigen::RowVector3d::Constant(std::numeric_limits<double>::max());
+  Eigen::RowVector3d high = -low;
+  for (const auto& part : scheme_->x().parts()) {
+    const Coordinates& points = part.model_part->coordinates;
+    if (points.rows() == 0) continue;
+    low = low.cwiseMin(points.colwise().minCoeff());
+    high = high.cwiseMax(points.colwise().maxCoeff());
+  }
+  const double size = (high.array() >= low.array()).all() ? (high - low).norm() : 0.0;
+  const double values = static_cast<double>(scheme_->x().size());
+  return std::max(kNoiseFloor * largest_first_residual_, kRoundOff * size * std::sqrt(values));
 }
 
 void CoupledSolver::synchronize(const Eigen::VectorXd& u) {

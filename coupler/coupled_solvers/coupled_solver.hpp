@@ -211,6 +211,12 @@ class CoupledSolver {
   /// the growth check is measured against.
   double largest_first_residual_ = 0.0;
   static constexpr double kNoiseFloor = 1e-6;
+  /// A displacement residual below this fraction of the interface's size per value is
+  /// round-off, whatever the run's residuals were (a run that starts at rest has none larger).
+  static constexpr double kRoundOff = 1e-12;
+  /// The residual below which a step's iterations are the solvers' noise: kNoiseFloor of the
+  /// run's largest first residual, or round-off of the interface's size (kRoundOff).
+  double noise_floor() const;
 };
 
 struct CoupledSolver::OwnSolversStopwatch {

@@ -33,6 +33,7 @@ class Hdf5Output : public RunOutput {
     writer_->close(to_string(end.outcome.status), end.outcome.message);
   }
   std::vector<OutputFile> files() const override { return {{"results", writer_->path()}}; }
+  std::optional<int> steps_written() const override { return writer_->steps_written(); }
 
  private:
   double write_interval_;

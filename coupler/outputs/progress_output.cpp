@@ -29,7 +29,8 @@ void ProgressOutput::open(const OutputStart& start) {
 }
 
 // The residual (2-norm, and as the criterion measures it where that differs: "relative
-// 3.1e-07"), the step's wall time, and the time left at the average pace of the steps so far.
+// 3.1e-07"), marked * at the iteration limit (~ there at the solvers' noise), the step's wall
+// time, and the time left at the average pace of the steps so far.
 void ProgressOutput::write_step(const StepRecord& r) {
   if (steps_) {
     const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start_;
@@ -43,7 +44,8 @@ void ProgressOutput::write_step(const StepRecord& r) {
     fmt::print(
         "step {:>{}} / {}  t = {:<10.4g} iterations {:>3}  residual {:.3e}{}{}  {:8.3f} ms{}{}\n",
         r.step, std::to_string(last_).size(), last_, r.time, r.iterations, r.residual_norms.back(),
-        r.converged ? " " : "*", criterion, 1e3 * r.wall_time, surrogate, time_left);
+        r.converged ? " " : (r.at_noise ? "~" : "*"), criterion, 1e3 * r.wall_time, surrogate,
+        time_left);
     std::fflush(stdout);
   }
   if (warnings_) print_warnings(r);

@@ -11,6 +11,7 @@
 // The summary and the progress lines are Run's own (summary_output.hpp, progress_output.hpp).
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -43,6 +44,8 @@ struct RunEnd {
   double wall_time = 0.0;            ///< s, the whole run
   std::vector<double> solver_times;  ///< s, per solver
   double coupler_time = 0.0;         ///< s, the rest
+  /// The steps of this run in the results file once it is closed (none: no results file).
+  std::optional<int> steps_written;
 };
 
 /// A file to name in the run's last lines: ("ParaView", <name>.pvd).
@@ -69,6 +72,8 @@ class RunOutput {
   virtual void close(const RunEnd& /*end*/) {}
   /// The files to name at the end of the run.
   virtual std::vector<OutputFile> files() const { return {}; }
+  /// The results file's steps of this run, for the summary (none: it keeps no steps).
+  virtual std::optional<int> steps_written() const { return std::nullopt; }
 };
 
 /// Created from the case's `settings` section.

@@ -17,6 +17,7 @@ class SummaryOutput : public RunOutput {
   void write_step(const StepRecord& record) override { summary_.add_step(record); }
   void close(const RunEnd& end) override {
     summary_.finish(end.outcome, end.wall_time, end.solver_times, end.coupler_time);
+    summary_.set_steps_written(end.steps_written);
     summary_.write(path_);
   }
   std::vector<OutputFile> files() const override { return {{"summary", path_}}; }

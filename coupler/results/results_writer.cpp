@@ -418,17 +418,37 @@ void ResultsWriter::write_step(const StepRecord& record) {
     throw std::logic_error("results file '" + path_.string() + "': write_step after close");
   check_step(record);
   kept_.push_back(record);
-  kept_values_ +=
-      static_cast<std::size_t>(record.x.size() + record.y.size() + record.watchpoints.size()) +
-      record.residual_norms.size();
+  kept_values_ += values_of(record);
   const std::chrono::duration<double> since_write = std::chrono::steady_clock::now() - last_write_;
   constexpr std::size_t kMaxKeptValues = 8 << 20;  // 64 MB of doubles
-  if (since_write.count() >= write_interval_ || kept_values_ >= kMaxKeptValues) write_kept_steps();
+  if (since_write.count() >= write_interval_ || kept_values_ >= kMaxKeptValues ||
+      kept_.size() >= kMaxKeptSteps)
+    write_kept_steps();
 }
 
 void ResultsWriter::write_kept_steps() {
   if (kept_.empty() || !is_open()) return;
-  check_space();
+  const std::size_t room = steps_with_room();
+  if (room == kept_.size()) return write_batch();
+  // The disk is nearly full: every step that fits is written, the rest named in the error.
+  const int first = kept_[room].step, last = kept_.back().step;
+  const std::string steps = first == last
+                                ? "step " + std::to_string(first)
+                                : "steps " + std::to_string(first) + " to " + std::to_string(last);
+  const auto available = available_bytes();
+  kept_.resize(room);
+  kept_values_ = 0;
+  for (const auto& step : kept_) kept_values_ += values_of(step);
+  write_batch();
+  throw std::runtime_error("results file '" + path_.string() + "': the disk has " +
+                           std::to_string(available.value_or(0)) + " bytes left, too few for " +
+                           steps + " and closing the file: stopped before writing them, so " +
+                           "that the " + std::to_string(rows_) +
+                           " steps written stay readable; free space and restart the run");
+}
+
+void ResultsWriter::write_batch() {
+  if (kept_.empty()) return;
   const QuietErrors quiet;
   try {
     write_interface(x_blocks_, &StepRecord::x);
@@ -486,26 +506,37 @@ void ResultsWriter::check_step(const StepRecord& record) const {
         std::to_string(solver_count_) + ")");
 }
 
-// HDF5 leaves a file it could not finish writing (its metadata half updated) unreadable, and
-// with it every step flushed before. So a step is written only where the disk clearly has
-// room for it and for closing the file; otherwise the run stops with the file as it was.
-void ResultsWriter::check_space() const {
+std::optional<std::uint64_t> ResultsWriter::available_bytes() const {
   struct statvfs disk {};
   const auto directory = path_.has_parent_path() ? path_.parent_path() : ".";
-  if (::statvfs(directory.c_str(), &disk) != 0) return;  // nothing known: write and see
-  const std::uint64_t available = std::uint64_t(disk.f_bavail) * disk.f_frsize;
-  // Chunks may be allocated whole, and metadata grows with them: a generous multiple.
-  const std::uint64_t needed = 4 * 8 * (kept_values_ + 16 * kept_.size()) + kClosingReserveBytes;
-  const int first = kept_.front().step, last = kept_.back().step;
-  const std::string steps = first == last
-                                ? "step " + std::to_string(first)
-                                : "steps " + std::to_string(first) + " to " + std::to_string(last);
-  if (available < needed)
-    throw std::runtime_error("results file '" + path_.string() + "': the disk has " +
-                             std::to_string(available) + " bytes left, " + steps +
-                             " and closing the file need about " + std::to_string(needed) +
-                             ": stopped before writing them, so that the steps written so far "
-                             "stay readable; free space and restart the run");
+  if (::statvfs(directory.c_str(), &disk) != 0) return std::nullopt;
+  return std::uint64_t(disk.f_bavail) * disk.f_frsize;
+}
+
+std::size_t ResultsWriter::values_of(const StepRecord& step) {
+  return static_cast<std::size_t>(step.x.size() + step.y.size() + step.watchpoints.size()) +
+         step.residual_norms.size();
+}
+
+// HDF5 leaves a file it could not finish writing (its metadata half updated) unreadable, and
+// with it every step flushed before. So a step is written only where the disk clearly has
+// room for it and for closing the file: its values and row scalars, a quarter more for the
+// chunk index and the metadata, and per batch a new chunk (8 KiB) of every series and the
+// closing reserve.
+std::size_t ResultsWriter::steps_with_room() const {
+  const auto available = available_bytes();
+  if (!available) return kept_.size();  // nothing known: write and see
+  const std::uint64_t batch = 8192 * (series_count() + 1) + kClosingReserveBytes;
+  if (*available < batch) return 0;
+  std::uint64_t left = *available - batch;
+  std::size_t room = 0;
+  for (const auto& step : kept_) {
+    const std::uint64_t needed = 10 * (values_of(step) + 16);  // 8 bytes, and a quarter
+    if (needed > left) break;
+    left -= needed;
+    ++room;
+  }
+  return room;
 }
 
 void ResultsWriter::write_interface(const std::vector<BlockSeries>& blocks,

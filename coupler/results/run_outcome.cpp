@@ -34,6 +34,7 @@ RunStatus run_status_from_string(const std::string& name) {
 }
 
 int RunOutcome::exit_code() const {
+  if (status == RunStatus::kStalled) return 3;
   if (ran_all_steps(status)) return 0;
   return status == RunStatus::kInvalidCase ? 2 : 1;
 }

@@ -50,7 +50,8 @@ struct RunOutcome {
   std::string reason;   ///< short, e.g. "residual growth in step 3, iteration 7"
   std::string message;  ///< the whole error message, empty when the run went through
 
-  /// The process exit code of `cocopp run`: 0 went through, 1 stopped, 2 invalid case.
+  /// The process exit code of `cocopp run`: 0 completed, 1 stopped, 2 invalid case, 3 stalled
+  /// (every step computed, some accepted at the iteration limit above the solvers' noise).
   int exit_code() const;
 };
 

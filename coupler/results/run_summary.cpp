@@ -79,6 +79,7 @@ void RunSummary::add_step(const StepRecord& record) {
   if (record.surrogate_iterations > 0) surrogate_iterations_.push_back(record.surrogate_iterations);
   residuals_.push_back(record.residual_norms);
   if (!record.converged) unconverged_steps_.push_back(record.step);
+  if (record.at_noise) steps_at_noise_.push_back(record.step);
   for (const auto& warning : record.warnings)
     warnings_.push_back("step " + std::to_string(record.step) + ": " + warning);
   wall_time_ += record.wall_time;
@@ -146,11 +147,13 @@ json RunSummary::to_json() const {
                   {"iteration", outcome_.iteration > 0 ? json(outcome_.iteration) : json(nullptr)}};
   out["stopped_at"] = stopped_at;
   out["steps_completed"] = steps_.size();
+  out["steps_written"] = steps_written_ ? json(*steps_written_) : json(nullptr);
   out["last_step"] = steps_.empty() ? json(nullptr) : json(steps_.back());
   out["iterations_per_step"] = iterations_;
   out["average_iterations"] = ratio(static_cast<double>(total_iterations), steps);
   if (!surrogate_iterations_.empty()) out["surrogate_iterations_per_step"] = surrogate_iterations_;
   out["unconverged_steps"] = unconverged_steps_;
+  out["steps_at_noise"] = steps_at_noise_;
   out["warnings"] = warnings_;
   out["residual_history"] = residuals_;
   out["wall_time"] = wall_time_;

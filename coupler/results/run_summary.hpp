@@ -3,6 +3,7 @@
 // or to compare between runs. The keys are documented in docs/results.md.
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,7 +30,13 @@ class RunSummary {
 
   const RunDescription& run() const { return run_; }
   const std::vector<int>& iterations_per_step() const { return iterations_; }
+  /// Steps accepted at the iteration limit, those with the residual at the solvers' noise
+  /// among them (StepRecord::at_noise).
   const std::vector<int>& unconverged_steps() const { return unconverged_steps_; }
+  const std::vector<int>& steps_at_noise() const { return steps_at_noise_; }
+  /// The steps of this run the results file holds (none: no results file): fewer than
+  /// steps_completed() where the file could not take them (a full disk).
+  void set_steps_written(std::optional<int> steps) { steps_written_ = steps; }
   int steps_completed() const { return static_cast<int>(steps_.size()); }
   long total_iterations() const;
   /// NaN before the first step.
@@ -56,6 +63,8 @@ class RunSummary {
   std::vector<int> surrogate_iterations_;  ///< iqnism only: its surrogate's, per step
   std::vector<std::vector<double>> residuals_;
   std::vector<int> unconverged_steps_;
+  std::vector<int> steps_at_noise_;
+  std::optional<int> steps_written_;
   std::vector<std::string> warnings_;  ///< "step 3: ...", from StepRecord::warnings
 
   bool finished_ = false;

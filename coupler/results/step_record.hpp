@@ -34,6 +34,9 @@ struct StepRecord {
   std::vector<double> solver_times;    ///< s, per solver wrapper, same order as solver_names
   double coupler_time = 0;             ///< s, wall_time minus the solver times
   bool converged = true;  ///< false: accepted at an iteration limit without meeting the tolerance
+  /// Not converged, but the last residual at the solvers' noise (CoupledSolver::noise_floor):
+  /// a criterion that cannot be met there, not a coupling that does not converge.
+  bool at_noise = false;
   /// The last residual as the convergence criterion measures it ("relative 3.1e-07"), for the
   /// progress line; not written to the results.
   std::string criterion_progress;
