@@ -12,6 +12,7 @@
 #include "core/case/path_problem.hpp"
 #include "core/case/suggest.hpp"
 #include "solver_wrappers/process/child_process.hpp"
+#include "solver_wrappers/process/python_hint.hpp"
 #include "solver_wrappers/solver_error.hpp"
 
 namespace cocopp {
@@ -517,9 +518,20 @@ void ProcessSolverWrapper::fail_with_log(const std::string& message) {
 }
 
 void ProcessSolverWrapper::fail_child_exited(const std::string& request_name) {
-  fail_with_log(fmt::format("solver '{}' (pid {}) {} during {} {}; last lines of {}:", name_,
-                            child_->pid(), child_->describe_exit(), request_name,
-                            at_position(request_name), log_file_.string()));
+  const std::string message = fmt::format(
+      "solver '{}' (pid {}) {} during {} {}; last lines of {}:", name_, child_->pid(),
+      child_->describe_exit(), request_name, at_position(request_name), log_file_.string());
+  release();  // first: the log is complete once the process has ended
+  const std::string tail = log_tail();
+  // A Python solver that died for want of a module: which interpreter ran, and what to change.
+  std::string hint;
+  try {
+    hint = python_module_hint(command_, find_executable(command_.at(0), working_directory_), tail,
+                              installed_python_sdk_directory());
+  } catch (const std::exception&) {
+    // no executable to name: no hint
+  }
+  throw SolverError(name_, message + "\n" + tail + (hint.empty() ? "" : "\n" + hint));
 }
 
 void ProcessSolverWrapper::release() noexcept {

@@ -8,6 +8,7 @@
 
 #include "core/protocol/pipe_transport.hpp"
 #include "solver_wrappers/process/process_solver_wrapper.hpp"
+#include "solver_wrappers/process/python_hint.hpp"
 #include "solver_wrappers/solver_error.hpp"
 #include "tests/support/error_message.hpp"
 #include "tests/support/temporary_directory.hpp"
@@ -375,6 +376,26 @@ TEST_F(ProcessSolverWrapperSetupTest, AProgramThatIsNoSolverIsReported) {
   const std::string message = solver_error_of([&] { wrapper->initialize(); });
   EXPECT_CONTAINS(message, "exited with code 7 during startup before the first step");
   EXPECT_CONTAINS(message, "I am no solver");
+}
+
+// Issue 51: a Python solver that dies for want of a module names the interpreter its command
+// ran (a python3 first on PATH may lack NumPy) and what to change; for cocopp_sdk, where it is.
+TEST_F(ProcessSolverWrapperSetupTest, APythonSolverWithoutItsModuleIsToldWhichInterpreterRan) {
+  auto wrapper =
+      create_flow("command: [/usr/bin/python3, -c, 'import no_such_module_of_cocopp']\n");
+  const std::string message = solver_error_of([&] { wrapper->initialize(); });
+  EXPECT_CONTAINS(message, "No module named 'no_such_module_of_cocopp'");
+  EXPECT_CONTAINS(message, "hint: the solver's command ran /usr/bin/python3");
+  EXPECT_CONTAINS(message, "which has no module 'no_such_module_of_cocopp'");
+  EXPECT_CONTAINS(message, "command: [/usr/bin/python3, ...]");
+
+  const std::string tail = "ModuleNotFoundError: No module named 'cocopp_sdk'\n";
+  EXPECT_CONTAINS(python_module_hint({"python3", "wall.py"}, "/usr/local/bin/python3", tail, ""),
+                  "ran python3 (found as /usr/local/bin/python3)");
+  EXPECT_CONTAINS(python_module_hint({"python3", "wall.py"}, "/usr/bin/python3", tail,
+                                     "/opt/cocopp/lib/python3/dist-packages"),
+                  "export PYTHONPATH=/opt/cocopp/lib/python3/dist-packages");
+  EXPECT_EQ(python_module_hint({"python3"}, "/usr/bin/python3", "Traceback: KeyError", ""), "");
 }
 
 TEST_F(ProcessSolverWrapperSetupTest, DefaultsAndPaths) {
