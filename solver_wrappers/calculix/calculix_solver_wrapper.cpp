@@ -118,8 +118,11 @@ CalculixSolverWrapper::CalculixSolverWrapper(const Settings& settings, const Run
       settings.fail("surface_stiffness",
                     "give the structure's stiffness per area against a push of its surface, "
                     "in Pa/m (about its Young's modulus over the faces' length), > 0");
-    reynolds_film_ =
-        settings.get_choice("film_stiffness", "local", {"local", "reynolds"}) == "reynolds";
+    const std::string film_stiffness =
+        settings.get_choice("film_stiffness", "local", {"local", "reynolds", "probed"});
+    reynolds_film_ = film_stiffness == "reynolds";
+    if (film_stiffness == "probed")
+      probed_film_file_ = settings.required<std::string>("film_probe");
     drive_log_ = settings.get<std::string>("drive_log", "");
     surface_compliance_file_ = settings.get<std::string>("surface_compliance", "");
     if (!surface_compliance_file_.empty())
@@ -313,6 +316,7 @@ void CalculixSolverWrapper::read_deck() {
             calculix::SurfaceCompliance::read(model_.file(surface_compliance_file_)),
             surface_compliance_scale_);
       if (reynolds_film_) drive_->use_reynolds_film();
+      if (!probed_film_file_.empty()) drive_->use_probed_film(model_.file(probed_film_file_));
       if (!drive_log_.empty()) {
         std::filesystem::remove(model_.file(drive_log_));
         drive_->log_to(model_.file(drive_log_));

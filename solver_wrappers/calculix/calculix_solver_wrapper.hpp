@@ -81,8 +81,9 @@ class CalculixSolverWrapper : public SolverWrapper {
   double surface_stiffness_ = 0.0;
   std::string surface_compliance_file_;  ///< empty: the drive's stiffness per line
   double surface_compliance_scale_ = 1.0;
-  bool reynolds_film_ = false;  ///< film_stiffness: reynolds
-  std::string drive_log_;       ///< drive_log: the drive's lines per iteration (empty: none)
+  bool reynolds_film_ = false;    ///< film_stiffness: reynolds
+  std::string probed_film_file_;  ///< film_stiffness: probed: film_probe, the film's probe file
+  std::string drive_log_;         ///< drive_log: the drive's lines per iteration (empty: none)
   std::vector<std::int64_t> driven_node_set_;
   std::unique_ptr<calculix::DisplacementDrive> drive_;
   // mode

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "solver_wrappers/calculix/probed_film.hpp"
 #include "solver_wrappers/calculix/reynolds_film.hpp"
 
 namespace cocopp::calculix {
@@ -236,12 +237,14 @@ std::map<std::int64_t, double> DisplacementDrive::moves_by_line(
     film[i] = std::max(0.0, stiffness / weight[i]);
   }
   // Each line alone (the drive's own step, to the last bit), or all together.
+  const bool coupled = compliance_ || reynolds_film_ || !probed_film_file_.empty();
   const Eigen::VectorXd move =
-      !compliance_ && !reynolds_film_
+      !coupled
           ? Eigen::VectorXd((force.array() / weight.array()) / (film.array() + surface_stiffness_))
           : line_moves(lines, force, weight,
-                       reynolds_film_ ? reynolds_film_stiffness(lines)
-                                      : Eigen::MatrixXd(weight.cwiseProduct(film).asDiagonal()));
+                       !probed_film_file_.empty() ? probed_film_stiffness(lines, weight, film)
+                       : reynolds_film_           ? reynolds_film_stiffness(lines)
+                                        : Eigen::MatrixXd(weight.cwiseProduct(film).asDiagonal()));
   if (!log_file_.empty()) log_lines(lines, force, weight, film, move);
   std::map<std::int64_t, double> moves;
   for (Eigen::Index i = 0; i < count; ++i)
@@ -293,6 +296,21 @@ Eigen::VectorXd DisplacementDrive::line_moves(const std::vector<std::vector<std:
   Eigen::MatrixXd system = compliance * film;
   system.diagonal().array() += 1.0;
   return system.partialPivLu().solve(compliance * force);
+}
+
+Eigen::MatrixXd DisplacementDrive::probed_film_stiffness(
+    const std::vector<std::vector<std::int64_t>>& lines, const Eigen::VectorXd& weight,
+    const Eigen::VectorXd& film) const {
+  const ProbedFilm probed = ProbedFilm::read(probed_film_file_);
+  if (probed.step() != log_step_)
+    throw std::runtime_error(fmt::format(
+        "film probe {} is of step {}, the drive is in step {}: the film probes every step "
+        "(COCOPP_SENSITIVITY_PROBE='every MOVE FILE') before the structure's first iteration",
+        probed_film_file_.string(), probed.step(), log_step_));
+  Eigen::VectorXd axial(static_cast<Eigen::Index>(lines.size()));
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    axial[static_cast<Eigen::Index>(i)] = axial_position(lines[i].front());
+  return probed.stiffness(axial, weight, film);
 }
 
 double DisplacementDrive::axial_position(std::int64_t node) const {

@@ -70,6 +70,10 @@ class DisplacementDrive {
   /// faces' gaps, fitted to the film's pressure (reynolds_film.hpp), instead of 2 p / gap per
   /// line. Needs the driven nodes in a cylindrical *TRANSFORM (its axis is the film's).
   void use_reynolds_film() { reynolds_film_ = true; }
+  /// The film's stiffness between the driven lines from the film's own finite differences
+  /// (probed_film.hpp): `file`, which the film writes each step at its first coupling
+  /// iteration; it must be this step's (docs/wire-drawing.md, "The film's own sensitivity").
+  void use_probed_film(std::filesystem::path file) { probed_film_file_ = std::move(file); }
   /// Append each balance()'s lines to `file` (`drive_log`): a block "# step S iteration K" (and
   /// "reynolds_misfit M" with the Reynolds film), then per driven line one of its nodes, its
   /// axial position, prescribed value, imbalance (N), weight (m^2), the film's local stiffness
@@ -150,6 +154,10 @@ class DisplacementDrive {
   /// Reynolds' equation over each run of driven faces along the axis.
   Eigen::MatrixXd reynolds_film_stiffness(
       const std::vector<std::vector<std::int64_t>>& lines) const;
+  /// The same from the film's probe file (use_probed_film()).
+  Eigen::MatrixXd probed_film_stiffness(const std::vector<std::vector<std::int64_t>>& lines,
+                                        const Eigen::VectorXd& weight,
+                                        const Eigen::VectorXd& film) const;
   /// A face the film covers, its extent along the axis.
   struct FilmFace {
     double start, end;
@@ -173,6 +181,7 @@ class DisplacementDrive {
   std::optional<SurfaceCompliance> compliance_;
   double compliance_scale_ = 1.0;
   bool reynolds_film_ = false;
+  std::filesystem::path probed_film_file_;  ///< empty: not probed
   std::filesystem::path log_file_;
   int log_step_ = 0;
   mutable int log_iteration_ = 0;

@@ -91,6 +91,18 @@ class CoupledTime : public Foam::Time {
   void as_first_step() { deltaT0_ = Foam::GREAT; }
 };
 
+/// COCOPP_SENSITIVITY_PROBE='STEP MOVE FILE [cold|warm]': at step STEP's (or every step's:
+/// 'every') first coupling iteration, solve the step again per hoop line of the wall moved
+/// radially by MOVE (m) and write the faces' force changes to FILE (sensitivity_probe.cpp);
+/// warm: each probe starts from the step's solution. Step 0: off.
+struct SensitivityProbe {
+  int step = 0;
+  double move = 0.0;
+  std::string file;
+  bool warm = false;  ///< each probe starts from the step's solution, not the step's start
+  static SensitivityProbe from_environment();
+};
+
 class PimpleFoamSolver : public sdk::Solver {
  public:
   /// `gap_patch`: if not empty, the interface faces also output their gap to this patch and
@@ -155,6 +167,8 @@ class PimpleFoamSolver : public sdk::Solver {
   /// rank's faces of it).
   Foam::scalarField gaps(Foam::label id) const;
   sdk::InterfaceDescription interface_description() const;
+  /// The film's force per face against each hoop line's radial move (SensitivityProbe).
+  void probe_sensitivity(const std::vector<double>& input, const std::vector<double>& output);
   std::size_t input_size() const;
 
   Foam::argList& args_;
@@ -190,6 +204,8 @@ class PimpleFoamSolver : public sdk::Solver {
   int window_substep_ = 0;                          ///< in this iteration of the window
   bool mesh_moved_in_window_ = false;               ///< since the window's start
   int iteration_ = 0;
+  int step_ = 0;
+  SensitivityProbe probe_ = SensitivityProbe::from_environment();
   bool stepped_ = false;
   bool warm_start_ = false;      ///< coupling iterations continue from the previous iterate
   bool restore_fields_ = false;  ///< even so: the last solve was abandoned part way

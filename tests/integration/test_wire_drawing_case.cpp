@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <numeric>
 #include <regex>
 #include <string>
@@ -205,6 +206,70 @@ TEST(WireDrawingCase, SteadyStepsHoldTheDieClosedAfterItsSchedule) {
 // equilibrium with the loads ccx took (as nodal forces and the drive's reactions), the film's
 // radial and axial loads reach the wire, and the stresses stay on or below the yield surface (the
 // coarse wire starts to yield by step 12: plastic strain 5e-4).
+/// The probe file cocoppPimpleFoam wrote (COCOPP_SENSITIVITY_PROBE): per line, the radial
+/// force change of every face (N per m of move).
+std::vector<std::vector<double>> read_probe(const fs::path& file, std::size_t& faces) {
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  std::getline(in, line);
+  faces = std::stoul(line.substr(line.find("faces ") + 6));
+  for (std::size_t f = 0; f < faces; ++f) std::getline(in, line);
+  std::getline(in, line);
+  const std::size_t lines = std::stoul(line.substr(line.find("lines ") + 6));
+  std::vector<std::vector<double>> radial(lines, std::vector<double>(faces));
+  for (auto& row : radial) {
+    double axial = 0.0;
+    in >> axial;
+    for (double& value : row) in >> value;
+    std::getline(in, line);  // the axial changes
+  }
+  EXPECT_TRUE(in.good()) << file;
+  return radial;
+}
+
+// Issue 45: the film's sensitivity probe measures the film and changes nothing the coupling
+// sees. The coarse case for 3 steps with the probe in step 3 gives the results of the run
+// without it bit for bit; the probe has a line per film line (the faces plus one); a line moved
+// outward pushes the film's two faces beside it harder inward (a film stiffer for a thinner
+// gap); and a move twice as large gives the same answer (linear: measured within 1.1e-3).
+TEST(WireDrawingCase, TheFilmsProbeAnswersItsOwnLinesAsAStiffFilm) {
+  testing::TemporaryDirectory plain, probed, doubled;
+  const std::string arguments = kCoarseMeshes + " --set time.held_steps=1";
+  run_case(plain.path(), arguments, 3);
+  for (const auto& [directory, move] : {std::pair{&probed, "1e-8"}, std::pair{&doubled, "2e-8"}}) {
+    const std::string probe = std::string("3 ") + move + " " + (*directory / "probe.txt").string();
+    ::setenv("COCOPP_SENSITIVITY_PROBE", probe.c_str(), 1);
+    run_case(directory->path(), arguments, 3);
+    ::unsetenv("COCOPP_SENSITIVITY_PROBE");
+  }
+  const auto displacement = [](const testing::TemporaryDirectory& directory) {
+    return ResultsReader(directory / "results/case.h5")
+        .dataset("x/wire_points/displacement")
+        .values;
+  };
+  EXPECT_EQ(displacement(probed), displacement(plain));
+
+  std::size_t faces = 0;
+  const auto radial = read_probe(probed / "probe.txt", faces);
+  const auto radial2 = read_probe(doubled / "probe.txt", faces);
+  ASSERT_EQ(radial.size(), faces + 1);
+  std::size_t stiff = 0;
+  double difference = 0.0, size = 0.0;
+  for (std::size_t j = 0; j < radial.size(); ++j) {
+    const double beside = (j > 0 ? radial[j][j - 1] : 0.0) + (j < faces ? radial[j][j] : 0.0);
+    if (beside < 0.0) ++stiff;
+    for (std::size_t f = 0; f < faces; ++f) {
+      difference += std::pow(radial2[j][f] - radial[j][f], 2);
+      size += std::pow(radial[j][f], 2);
+    }
+  }
+  std::printf("probe: %zu of %zu lines stiff, the doubled move within %.2e\n", stiff, radial.size(),
+              std::sqrt(difference / size));
+  EXPECT_GE(stiff, radial.size() - 2);  // the film's ends may be at ambient pressure
+  EXPECT_LT(std::sqrt(difference / size), 1e-2);
+}
+
 TEST(WireDrawingCase, TheCaseAsShippedRunsCoarse) {
   testing::TemporaryDirectory directory;
   const auto iterations =

@@ -55,6 +55,7 @@ cocopp_unit_test(solver_wrappers/openfoam SOURCES test_openfoam_case.cpp
 # (COCOPP_HAVE_CALCULIX, found once in solvers/calculix).
 cocopp_unit_test(solver_wrappers/calculix SOURCES test_calculix_deck.cpp test_displacement_drive_faces.cpp
                  test_displacement_drive_compliance.cpp test_reynolds_film.cpp
+                 test_probed_film.cpp
                  test_interface_loads_totals.cpp
                  LIBS cocopp_solver_wrappers)
 if(COCOPP_HAVE_CALCULIX)

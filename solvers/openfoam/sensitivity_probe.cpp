@@ -1,0 +1,126 @@
+// A film's sensitivity to its wall, by finite differences (docs/wire-drawing.md, "The film's
+// own sensitivity"): at one step's first coupling iteration, cocoppPimpleFoam solves the step
+// again with each hoop line of wall points moved radially by a small amount, and writes how
+// every face's force changed. A diagnostic for models of the interface's Jacobian; it changes
+// nothing the coupler sees (the step is solved once more at the coupler's input afterwards).
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "solvers/openfoam/pimple_foam_solver.hpp"
+#include "solvers/openfoam/step_start_state.hpp"
+
+namespace cocopp::openfoam {
+
+using namespace Foam;
+
+SensitivityProbe SensitivityProbe::from_environment() {
+  const char* text = std::getenv("COCOPP_SENSITIVITY_PROBE");
+  SensitivityProbe probe;
+  if (text == nullptr || *text == '\0') return probe;
+  std::istringstream in(text);
+  std::string step;
+  in >> step >> probe.move >> probe.file;
+  std::string start;
+  if (in >> start) probe.warm = start == "warm";
+  const bool start_known = start.empty() || start == "warm" || start == "cold";
+  try {
+    probe.step = !start_known ? 0 : step == "every" ? -1 : std::stoi(step);
+  } catch (const std::exception&) {
+    probe.step = 0;
+  }
+  if (probe.step == 0 || probe.step < -1 || !(probe.move > 0.0) || probe.file.empty())
+    throw std::runtime_error(std::string("COCOPP_SENSITIVITY_PROBE='") + text +
+                             "': give 'STEP MOVE FILE [cold|warm]', e.g. '66 1e-8 probe.txt' (the "
+                             "step or 'every', the radial move in m, the file to write; warm: "
+                             "each probe starts from the step's solution)");
+  return probe;
+}
+
+namespace {
+
+/// The radial unit vector of a point of a wedge about the z axis.
+vector radial(const point& x) {
+  const scalar r = std::hypot(x.x(), x.y());
+  return vector(x.x() / r, x.y() / r, 0.0);
+}
+
+}  // namespace
+
+void PimpleFoamSolver::probe_sensitivity(const std::vector<double>& input,
+                                         const std::vector<double>& output) {
+  if (Pstream::parRun() || patch_ids_.size() != 1 || gap_patch_id_ < 0)
+    FatalErrorInFunction << "COCOPP_SENSITIVITY_PROBE needs a serial run with one interface "
+                            "patch and a gap patch (a film)"
+                         << exit(FatalError);
+  const std::vector<label>& points = numbering_[0].point_ids();
+  const std::vector<label>& faces = numbering_[0].face_ids();
+  const pointField& points0 = initial_points();
+  // A hoop line: the wall points at one axial position (both sides of the wedge).
+  std::map<long long, std::vector<std::size_t>> lines;
+  for (std::size_t k = 0; k < points.size(); ++k)
+    lines[std::llround(points0[points[k]].z() / 1e-12)].push_back(k);
+  // loads(): the points' wall displacement, then per face pressure, traction (3), gap, force.
+  const std::size_t gap_at = 3 * points.size() + 4 * faces.size();
+  const std::size_t force_at = gap_at + faces.size();
+  const labelList face_labels(faces.begin(), faces.end());
+  const vectorField centres(mesh_->faceCentres(), face_labels);
+  const scalarField areas(mag(vectorField(mesh_->faceAreas(), face_labels)));
+  const auto face_forces = [&](const std::vector<double>& values, std::size_t f) {
+    const vector force(values[force_at + 3 * f], values[force_at + 3 * f + 1],
+                       values[force_at + 3 * f + 2]);
+    return std::make_pair(force & radial(centres[f]), force.z());
+  };
+  std::ofstream file(probe_.file);
+  file << "# cocoppPimpleFoam sensitivity probe: step " << step_ << ", each hoop line of wall "
+       << "points moved radially by " << probe_.move << " m\n# faces " << faces.size()
+       << ": axial and radial position of the centre (m), area (m^2), gap (m), radial and axial "
+          "force (N)\n";
+  file.precision(10);
+  // Warm: each probe's flow starts from this input's solution (on the step's start mesh, as
+  // warm coupling iterations do), which a small move changes little.
+  FlowFields solution;
+  if (probe_.warm) solution.store(*mesh_);
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const auto [radial_force, axial_force] = face_forces(output, f);
+    file << centres[f].z() << ' ' << mag(centres[f] - centres[f].z() * vector(0, 0, 1)) << ' '
+         << areas[f] << ' ' << output[gap_at + f] << ' ' << radial_force << ' ' << axial_force
+         << '\n';
+  }
+  file << "# lines " << lines.size() << ": axial position (m), then per face the change of its "
+       << "radial force, then of its axial force (N per m of move)\n";
+  for (const auto& [key, members] : lines) {
+    std::vector<double> moved = input;
+    for (std::size_t k : members) {
+      const vector outward = radial(points0[points[k]]);
+      for (direction d = 0; d < 3; ++d) moved[3 * k + d] += probe_.move * outward[d];
+    }
+    restore_step_start();
+    if (probe_.warm) solution.restore(*mesh_);
+    set_interface_displacement(moved);
+    solve_pimple();
+    const std::vector<double> probed = loads();
+    file << points0[points[members.front()]].z();
+    std::ostringstream axial;
+    axial.precision(10);
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      const auto [r0, a0] = face_forces(output, f);
+      const auto [r1, a1] = face_forces(probed, f);
+      file << ' ' << (r1 - r0) / probe_.move;
+      axial << ' ' << (a1 - a0) / probe_.move;
+    }
+    file << axial.str() << '\n';
+    Info << "cocopp sensitivity probe: line at z = " << points0[points[members.front()]].z()
+         << " m done" << nl << endl;
+  }
+  // The step as the coupler's input leaves it, for the next iteration's warm start.
+  restore_step_start();
+  if (probe_.warm) solution.restore(*mesh_);
+  set_interface_displacement(input);
+  solve_pimple();
+}
+
+}  // namespace cocopp::openfoam
