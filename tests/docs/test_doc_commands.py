@@ -17,6 +17,7 @@ docs/tutorial.md is run whole by ctest tutorial. usage: test_doc_commands.py BIN
 import glob
 import os
 import re
+import shlex
 import shutil
 import subprocess
 import sys
@@ -41,7 +42,10 @@ def normalize(command):
 
 
 def is_command(line, source):
-    words = line.split()
+    try:
+        words = shlex.split(line, comments=True)  # VAR="a b" is one word
+    except ValueError:
+        words = line.split()
     if not words:
         return False
     first = next((w for w in words if "=" not in w), "")  # after VAR=value assignments
