@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <fstream>
 
+#include "coupler/app/plot.hpp"
+
 namespace cocopp {
 
 namespace {
@@ -81,14 +83,6 @@ std::string quote(const std::string& text) {
   return quoted + "'";
 }
 
-/// The plot script is installed next to the executable's tree (<prefix>/share/cocopp), in the
-/// build tree and in an install alike: an installed cocopp never reaches into the sources.
-fs::path plot_script() {
-  std::error_code error;
-  const fs::path executable = fs::read_symlink("/proc/self/exe", error);
-  return executable.parent_path().parent_path() / "share" / "cocopp" / "plot_bench.py";
-}
-
 }  // namespace
 
 std::string label(const BenchRow& r) {
@@ -141,7 +135,7 @@ void write_outputs(const BenchFile& bench, const nlohmann::json& reference,
 }
 
 void plot(const BenchFile& bench) {
-  const fs::path script = plot_script();
+  const fs::path script = shared_script("plot_bench.py");
   const std::string command = fmt::format("/usr/bin/python3 {} {} -o {}", quote(script.string()),
                                           quote((bench.output_directory / "bench.json").string()),
                                           quote((bench.output_directory / "bench.png").string()));

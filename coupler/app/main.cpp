@@ -1,14 +1,23 @@
-// The `cocopp` command: run, check and list what a case file can name.
+// The `cocopp` command: run, check, bench, plot and list what a case file can name.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
+#include <string>
+#include <vector>
 
 #include "coupler/app/bench.hpp"
 #include "coupler/app/components.hpp"
 #include "coupler/app/export_vtk.hpp"
+#include "coupler/app/plot.hpp"
 #include "coupler/app/run.hpp"
 
 int main(int argc, char** argv) {
+  // `cocopp plot FILE ...`: everything after the file is the script's, --help included (CLI11
+  // would take that as the subcommand's own).
+  if (argc >= 3 && std::string(argv[1]) == "plot" && argv[2][0] != '-' &&
+      std::filesystem::is_regular_file(argv[2]))
+    return cocopp::plot_file(argv[2], std::vector<std::string>(argv + 3, argv + argc));
   CLI::App app{
       "cocopp: partitioned fluid-structure interaction.\n"
       "A coupler process drives two solver executables (the first maps interface displacement "
@@ -94,6 +103,19 @@ int main(int argc, char** argv) {
 
   app.add_subcommand("components", "List the component types a case file can name.");
 
+  std::string plot_target;
+  auto* plot = app.add_subcommand(
+      "plot",
+      "Draw a results file (<name>.h5: the residuals, the interface at chosen steps, a "
+      "space-time map; scripts/plot_results.py) or a bench's bench.json (error against time; "
+      "scripts/plot_bench.py) with the script installed with cocopp, run by Debian's "
+      "/usr/bin/python3. Options after the file go to the script: cocopp plot results/case.h5 "
+      "--help lists them. Exit code: the script's; 2 for a file of another kind.");
+  plot->add_option("file", plot_target, "results file (.h5) or bench.json")
+      ->required()
+      ->check(CLI::ExistingFile);
+  plot->allow_extras();  // reached only without a file (main's first lines take the rest)
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -104,6 +126,7 @@ int main(int argc, char** argv) {
   if (*run) return cocopp::run_case(case_file, options).outcome.exit_code();
   if (*check) return cocopp::check_case(case_file);
   if (*export_vtk) return cocopp::export_vtk(results_file, vtk_directory);
+  if (*plot) return cocopp::plot_file(plot_target, plot->remaining());
   if (*bench) {
     bench_options.plot = !no_plot;
     bench_options.quiet = bench_quiet;

@@ -267,6 +267,27 @@ TEST(CocoppRun, AStalledRunExitsWithThreeAndOneAtTheSolversNoiseWithZero) {
   fs::remove_all(dir);
 }
 
+// Issue 51: the plotting scripts behind one subcommand, from share/cocopp beside the
+// executable (the build tree's as an install's): a results file drawn, the script's own help
+// after the file, and a file of another kind refused with exit code 2.
+TEST(CocoppRun, PlotDrawsAResultsFileWithTheInstalledScript) {
+  const fs::path dir = copy_example("tube/flow_structure", "plot");
+  edit(dir / "case.yaml", "number_of_timesteps: 100", "number_of_timesteps: 5");
+  ASSERT_EQ(run_cocopp("run -q " + (dir / "case.yaml").string()).exit_code, 0);
+  const fs::path results = dir / "results" / "case.h5", picture = dir / "picture.png";
+  CommandResult plot = run_cocopp("plot " + results.string() + " -o " + picture.string());
+  EXPECT_EQ(plot.exit_code, 0) << plot.output;
+  ASSERT_TRUE(fs::exists(picture));
+  EXPECT_GT(fs::file_size(picture), 10000u);
+  plot = run_cocopp("plot " + results.string() + " --help");
+  EXPECT_EQ(plot.exit_code, 0) << plot.output;
+  EXPECT_NE(plot.output.find("--space-time"), std::string::npos) << plot.output;
+  plot = run_cocopp("plot " + (dir / "case.yaml").string());
+  EXPECT_EQ(plot.exit_code, 2);
+  EXPECT_NE(plot.output.find("cocopp plot draws a results file"), std::string::npos);
+  fs::remove_all(dir);
+}
+
 TEST(CocoppRun, YamlAndJsonGiveIdenticalRuns) {
   const fs::path yaml_dir = copy_example("tube/flow_structure", "fs_yaml");
   const fs::path json_dir = copy_example("tube/flow_structure", "fs_json");
