@@ -91,15 +91,17 @@ class CoupledTime : public Foam::Time {
   void as_first_step() { deltaT0_ = Foam::GREAT; }
 };
 
-/// COCOPP_SENSITIVITY_PROBE='STEP MOVE FILE [cold|warm]': at step STEP's (or every step's:
-/// 'every') first coupling iteration, solve the step again per hoop line of the wall moved
-/// radially by MOVE (m) and write the faces' force changes to FILE (sensitivity_probe.cpp);
-/// warm: each probe starts from the step's solution. Step 0: off.
+/// COCOPP_SENSITIVITY_PROBE='STEP MOVE FILE [cold|warm] [hat=K]': at step STEP's (or every
+/// step's: 'every') first coupling iteration, solve the step again per hoop line of the wall
+/// moved radially by MOVE (m) and write the faces' force changes to FILE
+/// (sensitivity_probe.cpp); warm: each probe starts from the step's solution; hat=K: every K-th
+/// line, the lines between moved linearly less. Step 0: off.
 struct SensitivityProbe {
   int step = 0;
   double move = 0.0;
   std::string file;
   bool warm = false;  ///< each probe starts from the step's solution, not the step's start
+  int hat = 1;        ///< every hat-th line probed, its neighbours moved by a hat function
   static SensitivityProbe from_environment();
 };
 

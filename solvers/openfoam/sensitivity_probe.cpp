@@ -24,19 +24,27 @@ SensitivityProbe SensitivityProbe::from_environment() {
   std::istringstream in(text);
   std::string step;
   in >> step >> probe.move >> probe.file;
-  std::string start;
-  if (in >> start) probe.warm = start == "warm";
-  const bool start_known = start.empty() || start == "warm" || start == "cold";
+  bool options_known = true;
+  for (std::string option; in >> option;) {
+    if (option == "warm" || option == "cold")
+      probe.warm = option == "warm";
+    else if (option.rfind("hat=", 0) == 0)
+      probe.hat = std::atoi(option.c_str() + 4);
+    else
+      options_known = false;
+  }
   try {
-    probe.step = !start_known ? 0 : step == "every" ? -1 : std::stoi(step);
+    probe.step = !options_known || probe.hat < 1 ? 0 : step == "every" ? -1 : std::stoi(step);
   } catch (const std::exception&) {
     probe.step = 0;
   }
   if (probe.step == 0 || probe.step < -1 || !(probe.move > 0.0) || probe.file.empty())
-    throw std::runtime_error(std::string("COCOPP_SENSITIVITY_PROBE='") + text +
-                             "': give 'STEP MOVE FILE [cold|warm]', e.g. '66 1e-8 probe.txt' (the "
-                             "step or 'every', the radial move in m, the file to write; warm: "
-                             "each probe starts from the step's solution)");
+    throw std::runtime_error(
+        std::string("COCOPP_SENSITIVITY_PROBE='") + text +
+        "': give 'STEP MOVE FILE [cold|warm] [hat=K]', e.g. '66 1e-8 probe.txt' "
+        "(the step or 'every', the radial move in m, the file to write; "
+        "warm: each probe starts from the step's solution; hat=K: every "
+        "K-th line probed, its neighbours moved linearly less)");
   return probe;
 }
 
@@ -60,9 +68,17 @@ void PimpleFoamSolver::probe_sensitivity(const std::vector<double>& input,
   const std::vector<label>& faces = numbering_[0].face_ids();
   const pointField& points0 = initial_points();
   // A hoop line: the wall points at one axial position (both sides of the wedge).
-  std::map<long long, std::vector<std::size_t>> lines;
+  std::map<long long, std::vector<std::size_t>> by_position;
   for (std::size_t k = 0; k < points.size(); ++k)
-    lines[std::llround(points0[points[k]].z() / 1e-12)].push_back(k);
+    by_position[std::llround(points0[points[k]].z() / 1e-12)].push_back(k);
+  std::vector<std::vector<std::size_t>> lines;
+  for (auto& entry : by_position) lines.push_back(std::move(entry.second));
+  // Probed: every hat-th line (and the last), moving the lines within hat of it by the hat
+  // function's share, so that the answers interpolate linearly between the probed lines.
+  const auto hat = static_cast<std::size_t>(probe_.hat);
+  std::vector<std::size_t> probed;
+  for (std::size_t i = 0; i < lines.size(); i += hat) probed.push_back(i);
+  if (probed.back() != lines.size() - 1) probed.push_back(lines.size() - 1);
   // loads(): the points' wall displacement, then per face pressure, traction (3), gap, force.
   const std::size_t gap_at = 3 * points.size() + 4 * faces.size();
   const std::size_t force_at = gap_at + faces.size();
@@ -76,7 +92,8 @@ void PimpleFoamSolver::probe_sensitivity(const std::vector<double>& input,
   };
   std::ofstream file(probe_.file);
   file << "# cocoppPimpleFoam sensitivity probe: step " << step_ << ", each hoop line of wall "
-       << "points moved radially by " << probe_.move << " m\n# faces " << faces.size()
+       << "points moved radially by " << probe_.move << " m (hat " << hat << ")\n# faces "
+       << faces.size()
        << ": axial and radial position of the centre (m), area (m^2), gap (m), radial and axial "
           "force (N)\n";
   file.precision(10);
@@ -90,13 +107,22 @@ void PimpleFoamSolver::probe_sensitivity(const std::vector<double>& input,
          << areas[f] << ' ' << output[gap_at + f] << ' ' << radial_force << ' ' << axial_force
          << '\n';
   }
-  file << "# lines " << lines.size() << ": axial position (m), then per face the change of its "
-       << "radial force, then of its axial force (N per m of move)\n";
-  for (const auto& [key, members] : lines) {
+  file << "# lines " << probed.size() << ": axial position (m), then per face the change of "
+       << "its radial force, then of its axial force (N per m of move)\n";
+  for (std::size_t at = 0; at < probed.size(); ++at) {
+    const std::size_t centre = probed[at];
+    const auto& members = lines[centre];
     std::vector<double> moved = input;
-    for (std::size_t k : members) {
-      const vector outward = radial(points0[points[k]]);
-      for (direction d = 0; d < 3; ++d) moved[3 * k + d] += probe_.move * outward[d];
+    const std::size_t from = at > 0 ? probed[at - 1] + 1 : 0;
+    const std::size_t to = at + 1 < probed.size() ? probed[at + 1] : lines.size();
+    for (std::size_t i = from; i < to; ++i) {
+      const std::size_t width = i < centre ? centre - probed[at - 1]
+                                           : (at + 1 < probed.size() ? probed[at + 1] - centre : 1);
+      const double share = 1.0 - double(i > centre ? i - centre : centre - i) / double(width);
+      for (std::size_t k : lines[i]) {
+        const vector outward = radial(points0[points[k]]);
+        for (direction d = 0; d < 3; ++d) moved[3 * k + d] += share * probe_.move * outward[d];
+      }
     }
     restore_step_start();
     if (probe_.warm) solution.restore(*mesh_);
