@@ -32,11 +32,15 @@ double interpolate(const Eigen::VectorXd& x, const Eigen::VectorXd& y, double at
   return (1.0 - t) * y[lower] + t * y[upper];
 }
 
-/// The count after "# <word> " on a header line.
+/// The count after "# <word> " on a header line (-1: none).
 long header_count(const std::string& line, const std::string& word) {
   const std::string prefix = "# " + word + " ";
   if (line.rfind(prefix, 0) != 0) return -1;
-  return std::stol(line.substr(prefix.size()));
+  try {
+    return std::stol(line.substr(prefix.size()));
+  } catch (const std::exception&) {
+    return -1;
+  }
 }
 
 }  // namespace
@@ -51,8 +55,11 @@ ProbedFilm ProbedFilm::read(const std::filesystem::path& file) {
   std::string line;
   std::getline(in, line);
   const auto at = line.find("step ");
-  if (at == std::string::npos) fail("no step in its first line");
-  film.step_ = std::stoi(line.substr(at + 5));
+  try {
+    film.step_ = std::stoi(line.substr(at == std::string::npos ? line.size() : at + 5));
+  } catch (const std::exception&) {
+    fail("no step in its first line");
+  }
   std::getline(in, line);
   const long faces = header_count(line, "faces");
   if (faces <= 0) fail("no '# faces N' line");

@@ -4,6 +4,7 @@
 // every face's force changed. A diagnostic for models of the interface's Jacobian; it changes
 // nothing the coupler sees (the step is solved once more at the coupler's input afterwards).
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <map>
@@ -90,7 +91,9 @@ void PimpleFoamSolver::probe_sensitivity(const std::vector<double>& input,
                        values[force_at + 3 * f + 2]);
     return std::make_pair(force & radial(centres[f]), force.z());
   };
-  std::ofstream file(probe_.file);
+  // Written beside and renamed when complete: a reader sees the last step's file or this one.
+  const std::string partial = probe_.file + ".partial";
+  std::ofstream file(partial);
   file << "# cocoppPimpleFoam sensitivity probe: step " << step_ << ", each hoop line of wall "
        << "points moved radially by " << probe_.move << " m (hat " << hat << ")\n# faces "
        << faces.size()
@@ -142,6 +145,10 @@ void PimpleFoamSolver::probe_sensitivity(const std::vector<double>& input,
     Info << "cocopp sensitivity probe: line at z = " << points0[points[members.front()]].z()
          << " m done" << nl << endl;
   }
+  file.close();
+  if (!file || std::rename(partial.c_str(), probe_.file.c_str()) != 0)
+    FatalErrorInFunction << "cannot write the sensitivity probe " << probe_.file
+                         << exit(FatalError);
   // The step as the coupler's input leaves it, for the next iteration's warm start.
   restore_step_start();
   if (probe_.warm) solution.restore(*mesh_);
