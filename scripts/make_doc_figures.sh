@@ -62,10 +62,10 @@ make_tube_substeps() {  # each solver at its own time step: error against run ti
 
 make_tube_flow_calculix() {
   local tube="$root/examples/tube"
-  "$cocopp" run --quiet "$tube/flow_calculix/case.yaml"
-  "$cocopp" run --quiet "$tube/flow_calculix/case_axisymmetric.yaml"
-  "$cocopp" run --quiet "$tube/flow_calculix/equivalent_tube/case.yaml"
-  "$cocopp" run --quiet "$tube/flow_structure/case.yaml"
+  "$cocopp" run --quiet "$tube/flow_calculix/case.yaml" || [ $? -eq 3 ]
+  "$cocopp" run --quiet "$tube/flow_calculix/case_axisymmetric.yaml" || [ $? -eq 3 ]
+  "$cocopp" run --quiet "$tube/flow_calculix/equivalent_tube/case.yaml" || [ $? -eq 3 ]
+  "$cocopp" run --quiet "$tube/flow_structure/case.yaml" || [ $? -eq 3 ]
   "$python" "$tube/flow_calculix/compare.py"
   publish "$tube/flow_calculix/results/tube-flow-calculix.png" tube-flow-calculix.png
 }

@@ -57,6 +57,22 @@ vector radial(const point& x) {
   return vector(x.x() / r, x.y() / r, 0.0);
 }
 
+/// Each line's share of probe `at`'s move: 1 at its line, falling linearly to 0 at the probed
+/// lines beside it (a hat function).
+std::vector<double> hat_shares(const std::vector<std::size_t>& probed, std::size_t at,
+                               std::size_t lines) {
+  std::vector<double> share(lines, 0.0);
+  const std::size_t centre = probed[at];
+  share[centre] = 1.0;
+  if (at > 0)
+    for (std::size_t i = probed[at - 1] + 1; i < centre; ++i)
+      share[i] = 1.0 - double(centre - i) / double(centre - probed[at - 1]);
+  if (at + 1 < probed.size())
+    for (std::size_t i = centre + 1; i < probed[at + 1]; ++i)
+      share[i] = 1.0 - double(i - centre) / double(probed[at + 1] - centre);
+  return share;
+}
+
 }  // namespace
 
 void PimpleFoamSolver::probe_sensitivity(const std::vector<double>& input,
@@ -113,31 +129,25 @@ void PimpleFoamSolver::probe_sensitivity(const std::vector<double>& input,
   file << "# lines " << probed.size() << ": axial position (m), then per face the change of "
        << "its radial force, then of its axial force (N per m of move)\n";
   for (std::size_t at = 0; at < probed.size(); ++at) {
-    const std::size_t centre = probed[at];
-    const auto& members = lines[centre];
+    const auto& members = lines[probed[at]];
     std::vector<double> moved = input;
-    const std::size_t from = at > 0 ? probed[at - 1] + 1 : 0;
-    const std::size_t to = at + 1 < probed.size() ? probed[at + 1] : lines.size();
-    for (std::size_t i = from; i < to; ++i) {
-      const std::size_t width = i < centre ? centre - probed[at - 1]
-                                           : (at + 1 < probed.size() ? probed[at + 1] - centre : 1);
-      const double share = 1.0 - double(i > centre ? i - centre : centre - i) / double(width);
+    const std::vector<double> share = hat_shares(probed, at, lines.size());
+    for (std::size_t i = 0; i < lines.size(); ++i)
       for (std::size_t k : lines[i]) {
         const vector outward = radial(points0[points[k]]);
-        for (direction d = 0; d < 3; ++d) moved[3 * k + d] += share * probe_.move * outward[d];
+        for (direction d = 0; d < 3; ++d) moved[3 * k + d] += share[i] * probe_.move * outward[d];
       }
-    }
     restore_step_start();
     if (probe_.warm) solution.restore(*mesh_);
     set_interface_displacement(moved);
     solve_pimple();
-    const std::vector<double> probed = loads();
+    const std::vector<double> answer = loads();
     file << points0[points[members.front()]].z();
     std::ostringstream axial;
     axial.precision(10);
     for (std::size_t f = 0; f < faces.size(); ++f) {
       const auto [r0, a0] = face_forces(output, f);
-      const auto [r1, a1] = face_forces(probed, f);
+      const auto [r1, a1] = face_forces(answer, f);
       file << ' ' << (r1 - r0) / probe_.move;
       axial << ' ' << (a1 - a0) / probe_.move;
     }

@@ -14,6 +14,12 @@ struct CommandResult {
   std::string output;  ///< stdout and stderr together
 };
 
+/// `cocopp run` went through every step: completed (0) or stalled (3: steps accepted at the
+/// iteration limit above the solvers' noise, which the tests whose runs may stall accept).
+inline bool went_through(const CommandResult& run) {
+  return run.exit_code == 0 || run.exit_code == 3;
+}
+
 /// Run `command` through the shell, capturing its output.
 CommandResult run_command(const std::string& command);
 /// `cocopp <arguments>` with the built executable.

@@ -120,7 +120,7 @@ TEST(RunOutcome, StatusNamesAndExitCodes) {
     EXPECT_EQ(run_status_from_string(to_string(status)), status) << to_string(status);
   EXPECT_THROW(run_status_from_string("finished"), std::invalid_argument);
   EXPECT_EQ(outcome(RunStatus::kCompleted, "", "").exit_code(), 0);
-  EXPECT_EQ(outcome(RunStatus::kStalled, "", "").exit_code(), 0);
+  EXPECT_EQ(outcome(RunStatus::kStalled, "", "").exit_code(), 3);
   EXPECT_EQ(outcome(RunStatus::kInterrupted, "", "").exit_code(), 1);
   EXPECT_EQ(outcome(RunStatus::kInvalidCase, "", "").exit_code(), 2);
   EXPECT_STREQ(to_string(DivergenceKind::kNonFinite), "non-finite values");
