@@ -514,14 +514,6 @@ void ProcessSolverWrapper::fail(const std::string& message) {
 
 void ProcessSolverWrapper::fail_with_log(const std::string& message) {
   release();  // first: the log is complete once the process has ended
-  throw SolverError(name_, message + "\n" + log_tail());
-}
-
-void ProcessSolverWrapper::fail_child_exited(const std::string& request_name) {
-  const std::string message = fmt::format(
-      "solver '{}' (pid {}) {} during {} {}; last lines of {}:", name_, child_->pid(),
-      child_->describe_exit(), request_name, at_position(request_name), log_file_.string());
-  release();  // first: the log is complete once the process has ended
   const std::string tail = log_tail();
   // A Python solver that died for want of a module: which interpreter ran, and what to change.
   std::string hint;
@@ -532,6 +524,12 @@ void ProcessSolverWrapper::fail_child_exited(const std::string& request_name) {
     // no executable to name: no hint
   }
   throw SolverError(name_, message + "\n" + tail + (hint.empty() ? "" : "\n" + hint));
+}
+
+void ProcessSolverWrapper::fail_child_exited(const std::string& request_name) {
+  fail_with_log(fmt::format("solver '{}' (pid {}) {} during {} {}; last lines of {}:", name_,
+                            child_->pid(), child_->describe_exit(), request_name,
+                            at_position(request_name), log_file_.string()));
 }
 
 void ProcessSolverWrapper::release() noexcept {
