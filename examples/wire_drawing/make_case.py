@@ -21,12 +21,14 @@ import sys
 
 import yaml
 
+import surface_compliance
 from cocopp import calculix, case, openfoam
+from cocopp.executable import patched_ccx
 from cocopp.openfoam import header
 
 HERE = pathlib.Path(__file__).resolve().parent
 TEXT_PARAMETERS = {"wire_element", "wire_model", "model", "type", "drive", "film_motion",
-                   "solver"}  # others: numbers
+                   "solver", "film_stiffness"}  # others: numbers
 
 
 def load_parameters(path, changes):
@@ -534,6 +536,13 @@ def solver_wrappers(p, prefix):
             "boundary_names": ["wire"]}
     if displacement_driven(p):
         film["gap_patch"] = case.commented("die", "the film's gap and wall position, for the wire")
+    if probed_film(p):
+        film["sensitivity_probe"] = case.commented(
+            {"file": "sensitivity.txt", "move": 1.0e-8, "start": "warm",
+             "hat": p["coupling"]["probe_hat"]},
+            "each step, the film solved again per hoop line of its wall\n"
+            "moved by 0.01 um (every probe_hat-th line, a hat over the\n"
+            "lines beside it): its own Jacobian, for the wire's drive")
     film["timeout"] = 600
     wire = {"type": case.commented("mapped", "S: the loads -> the wire's surface displacement"),
             "name": f"{name}wire",
@@ -577,6 +586,15 @@ def calculix_wrapper(p, prefix):
             "SURFACEALL", "all of the sector's surface (SURFACEN: its x-y side)")
         wrapper["surface_stiffness"] = case.commented(
             float(f"{surface_stiffness(p):.6g}"), "Pa/m, the Newton step's wire stiffness")
+        if p["coupling"]["surface_compliance"]:
+            wrapper["surface_compliance"] = case.commented(
+                "surface_compliance.txt", "the wire's elastic compliance between its\n"
+                "surface lines (surface_compliance.py), in that Newton step")
+        if probed_film(p):
+            wrapper["film_stiffness"] = case.commented(
+                "probed", "the film's stiffness in that Newton step: its own\n"
+                "sensitivity, which the film measures each step")
+            wrapper["film_probe"] = "../fluid/sensitivity.txt"
     wrapper["timeout"] = 600
     return wrapper
 
@@ -605,6 +623,22 @@ def displacement_driven(p):
         sys.exit("make_case.py: coupling.drive: displacement needs mesh.wire_model: sector "
                  "(ccx's reactions on an axisymmetric model are not the nodal forces)")
     return drive == "displacement"
+
+
+def probed_film(p):
+    """coupling.film_stiffness: probed (the film's own sensitivity drives the wire) or local
+    (a stiffness per face from its pressure and gap); a model of the displacement drive's, of
+    no use to a wire that takes the film's loads (drive: load)."""
+    model = p["coupling"]["film_stiffness"]
+    if model not in ("probed", "local"):
+        sys.exit(f"make_case.py: coupling.film_stiffness: '{model}' is not probed or local")
+    if not displacement_driven(p):
+        return False
+    if model == "probed" and not p["coupling"]["surface_compliance"]:
+        sys.exit("make_case.py: coupling.film_stiffness: probed needs coupling.surface_compliance:"
+                 " true (the probed film alone with a stiffness per line diverges, "
+                 "docs/wire-drawing.md)")
+    return model == "probed"
 
 
 def surface_stiffness(p):
@@ -666,6 +700,8 @@ def write_solvers(p, refine, output):
         sys.exit(f"make_case.py: mesh.wire_model: '{model}' is not axisymmetric or sector")
     deck = sector_wire_deck(p, refine) if model == "sector" else wire_deck(p, refine)
     (output / "structure" / "wire.inp").write_text(deck)
+    if displacement_driven(p) and p["coupling"]["surface_compliance"]:
+        surface_compliance.write_checked(output / "structure", patched_ccx())
     return film
 
 

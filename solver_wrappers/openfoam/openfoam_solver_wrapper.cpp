@@ -8,6 +8,8 @@
 // decomposes the case (decomposePar) and runs the application under mpirun. check() checks the case
 // before anything runs: fixed deltaT equal to the coupler's, a dynamic mesh with a motion solver,
 // the patches in the mesh, the density for the loads in Pa, the decomposition.
+// `sensitivity_probe` (a film): the film measures its own sensitivity to its wall each step by
+// finite differences, for the calculix wrapper's `film_stiffness: probed`.
 #include <fmt/format.h>
 
 #include <set>
@@ -32,6 +34,29 @@ std::vector<std::string> read_boundary_names(const Settings& settings) {
     if (!seen.insert(name).second)
       settings.fail("boundary_names", "patch '" + name + "' is listed twice");
   return names;
+}
+
+/// The `sensitivity_probe` mapping as cocoppPimpleFoam's COCOPP_SENSITIVITY_PROBE
+/// ('STEP MOVE FILE warm|cold hat=K', the file relative to the case); empty without the key.
+std::vector<std::pair<std::string, std::string>> sensitivity_probe(const Settings& settings,
+                                                                   int cores) {
+  if (!settings.has("sensitivity_probe")) return {};
+  const Settings probe = settings.child("sensitivity_probe");
+  if (cores != 1)
+    settings.fail("sensitivity_probe",
+                  fmt::format("the film probes itself in a serial run only: remove the key or "
+                              "set cores: 1 (it is {})",
+                              cores));
+  const std::string file = probe.required<std::string>("file");
+  if (file.empty() || file.find_first_of(" \t\n") != std::string::npos)
+    probe.fail("file", "give a file name without spaces, relative to the OpenFOAM case");
+  std::string step = probe.get<std::string>("step", "every");
+  if (step != "every") step = std::to_string(probe.get_int_in_range("step", 1, 1));
+  const double move = probe.get_in_range("move", 1e-8, Range::positive());
+  const std::string start = probe.get_choice("start", "warm", {"warm", "cold"});
+  const int hat = probe.get_int_in_range("hat", 1, 1, 1000);
+  return {{"COCOPP_SENSITIVITY_PROBE",
+           fmt::format("{} {} {} {} hat={}", step, move, file, start, hat)}};
 }
 
 DefaultCommand pimple_foam_command(const std::vector<std::string>& boundary_names, int cores,
@@ -66,7 +91,12 @@ class OpenFoamSolverWrapper : public ProcessSolverWrapper {
   OpenFoamSolverWrapper(const Settings& settings, const RunSettings& run)
       : OpenFoamSolverWrapper(settings, run, read_boundary_names(settings),
                               settings.get_int_in_range("cores", 1, 1),
-                              settings.get<std::string>("gap_patch", "")) {}
+                              settings.get<std::string>("gap_patch", "")) {
+    if (settings.has("sensitivity_probe") && settings.get<std::string>("gap_patch", "").empty())
+      settings.fail("sensitivity_probe",
+                    "the probe measures a film: give its gap_patch too (the wall it faces)");
+    set_case_environment(sensitivity_probe(settings, cores_));
+  }
 
   void check() const override {
     ProcessSolverWrapper::check();

@@ -353,6 +353,8 @@ void ProcessSolverWrapper::launch() {
     for (const auto& [variable, value] : default_environment_)
       if (std::getenv(variable.c_str()) == nullptr)
         options.environment.emplace_back(variable, value);
+    options.environment.insert(options.environment.end(), case_environment_.begin(),
+                               case_environment_.end());
     options.log_file = log_file_;
     options.truncate_log = true;
     child_ = std::make_unique<ChildProcess>(options);

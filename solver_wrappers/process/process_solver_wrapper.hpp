@@ -88,6 +88,17 @@ class ProcessSolverWrapper : public SolverWrapper {
   int child_pid() const;
   /// The process talking to the coupler, from its HELLO (differs from child_pid under mpirun).
   std::int64_t solver_pid() const { return solver_pid_; }
+  /// Variables the case's keys give the solver (set_case_environment).
+  const std::vector<std::pair<std::string, std::string>>& case_environment() const {
+    return case_environment_;
+  }
+
+ protected:
+  /// Variables the case's own keys set (the openfoam wrapper's `sensitivity_probe`): given to
+  /// the solver whatever the coupler's environment holds.
+  void set_case_environment(std::vector<std::pair<std::string, std::string>> variables) {
+    case_environment_ = std::move(variables);
+  }
 
  private:
   enum class State { kNotStarted, kRunning, kStopped };
@@ -150,6 +161,7 @@ class ProcessSolverWrapper : public SolverWrapper {
   double solver_busy_wait_ = 0.0;              ///< s, the solver's, through $COCOPP_BUSY_WAIT
   std::filesystem::path log_file_;
   std::vector<std::pair<std::string, std::string>> default_environment_;
+  std::vector<std::pair<std::string, std::string>> case_environment_;
   // Where in the case file, for check() errors.
   std::string working_directory_where_;
   std::string log_file_where_;  ///< the case file's line of log_file (else of working_directory)

@@ -233,5 +233,44 @@ TEST(OpenFoamWrapper, ReadsItsKeysAndStartsCocoppPimpleFoamOnThePatches) {
       "patch 'wall' is listed twice");
 }
 
+// A film's sensitivity_probe becomes cocoppPimpleFoam's COCOPP_SENSITIVITY_PROBE, which the
+// case's key sets whatever the coupler's environment holds; a probe of a parallel run or of a
+// case without its film's gap is refused at its line.
+TEST(OpenFoamWrapper, ASensitivityProbeKeyBecomesTheFilmsEnvironment) {
+  RunSettings run;
+  run.delta_t = 0.001;
+  run.case_directory = "/case";
+  const std::string film =
+      "type: openfoam\nworking_directory: fluid\nboundary_names: [wire]\ngap_patch: die\n";
+  const Settings settings = Settings::load_string(
+      film + "sensitivity_probe:\n  file: sensitivity.txt\n  hat: 3\n", "case.yaml");
+  const auto wrapper = SolverWrapperRegistry::instance().create(settings, run);
+  settings.check_unused_keys();
+  const auto& process = dynamic_cast<const ProcessSolverWrapper&>(*wrapper);
+  const std::vector<std::pair<std::string, std::string>> expected = {
+      {"COCOPP_SENSITIVITY_PROBE", "every 1e-08 sensitivity.txt warm hat=3"}};
+  EXPECT_EQ(process.case_environment(), expected);
+
+  const Settings step = Settings::load_string(
+      film + "sensitivity_probe: {file: p.txt, step: 66, move: 2.0e-8, start: cold}\n",
+      "case.yaml");
+  const auto at_step = SolverWrapperRegistry::instance().create(step, run);
+  EXPECT_EQ(dynamic_cast<const ProcessSolverWrapper&>(*at_step).case_environment().at(0).second,
+            "66 2e-08 p.txt cold hat=1");
+
+  const auto refused = [&](const std::string& text) {
+    const Settings bad = Settings::load_string(text, "case.yaml");
+    return error_message<CaseError>([&] { SolverWrapperRegistry::instance().create(bad, run); });
+  };
+  EXPECT_CONTAINS(
+      refused(film + "cores: 2\nsensitivity_probe: {file: p.txt}\n"),
+      "case.yaml:6:20: 'sensitivity_probe': the film probes itself in a serial run only");
+  EXPECT_CONTAINS(refused("type: openfoam\nworking_directory: fluid\nboundary_names: [wire]\n"
+                          "sensitivity_probe: {file: p.txt}\n"),
+                  "give its gap_patch too");
+  EXPECT_CONTAINS(refused(film + "sensitivity_probe: {file: p.txt, start: hot}\n"), "start");
+  EXPECT_CONTAINS(refused(film + "sensitivity_probe: {file: p.txt, step: 0}\n"), "step");
+}
+
 }  // namespace
 }  // namespace cocopp::openfoam
