@@ -1,8 +1,8 @@
 // Round-trip latency of the solver protocol: the coupler side sends SOLVE with N doubles and
 // waits for DATA, against a forked child that serves an echo solver through the SDK, exactly
-// as a solver executable would. Measured for the pipe and the file transport, and, as the
-// floor, a bare ping-pong of the same bytes through two anonymous pipes between the same two
-// kinds of process (blocking reads and writes, no framing), in the same run.
+// as a solver executable would. Measured for the pipe, the TCP (loopback) and the file transport,
+// and, as the floor, a bare ping-pong of the same bytes through two anonymous pipes between the
+// same two kinds of process (blocking reads and writes, no framing), in the same run.
 //
 //   bench_protocol_roundtrip [doubles=300] [round_trips=2000]
 #include <sys/wait.h>
@@ -104,11 +104,15 @@ Statistics measure(protocol::TransportKind kind, std::size_t doubles, int round_
                    std::chrono::microseconds busy_wait) {
   char pattern[] = "/tmp/cocopp_bench_XXXXXX";
   const std::filesystem::path directory = ::mkdtemp(pattern);
-  auto channel = protocol::create_coupler_channel(kind, directory, busy_wait);
+  protocol::CouplerChannelOptions options;
+  options.kind = kind;
+  options.directory = directory;
+  options.busy_wait = busy_wait;
+  auto channel = protocol::create_coupler_channel(options);
   const pid_t child = ::fork();
   if (child == 0) {
-    ::setenv(protocol::kTransportVariable, protocol::transport_name(kind).c_str(), 1);
-    ::setenv(protocol::kChannelVariable, directory.c_str(), 1);
+    for (const auto& [variable, value] : protocol::solver_environment(channel->address()))
+      ::setenv(variable.c_str(), value.c_str(), 1);
     EchoSolver solver(doubles / 3);
     char name[] = "echo";
     char* argv[] = {name, nullptr};
@@ -145,8 +149,8 @@ int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "--help") {
     std::puts(
         "usage: bench_protocol_roundtrip [doubles=300] [round_trips=2000]\n"
-        "Round-trip latency of one SOLVE request with its DATA reply, over the pipe and the "
-        "file transport, against a forked echo solver.");
+        "Round-trip latency of one SOLVE request with its DATA reply, over the pipe, the TCP "
+        "(loopback) and the file transport, against a forked echo solver.");
     return 0;
   }
   const std::size_t doubles = argc > 1 ? std::stoul(argv[1]) : 300;
@@ -166,6 +170,8 @@ int main(int argc, char** argv) {
   const Mode modes[] = {
       {protocol::TransportKind::kPipe, std::chrono::microseconds(0), "pipe, polling"},
       {protocol::TransportKind::kPipe, std::chrono::microseconds(1000), "pipe, busy wait 1 ms"},
+      {protocol::TransportKind::kTcp, std::chrono::microseconds(0), "tcp loopback, polling"},
+      {protocol::TransportKind::kTcp, std::chrono::microseconds(1000), "tcp loopback, busy 1 ms"},
       {protocol::TransportKind::kFile, std::chrono::microseconds(0), "file"}};
   for (const Mode& mode : modes) {
     const int count =

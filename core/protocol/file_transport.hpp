@@ -36,6 +36,9 @@ class FileTransport final : public Transport {
 
   /// Nothing to wait for: the first message file is the connection.
   void connect(double, const AliveCheck&) override {}
+  ChannelAddress address() const override {
+    return {TransportKind::kFile, directory_.string(), ""};
+  }
   using Transport::send;
   void send(const Frame& frame, double timeout_seconds,
             const AliveCheck& still_alive_check) override;

@@ -7,24 +7,91 @@
 
 #include "core/protocol/file_transport.hpp"
 #include "core/protocol/pipe_transport.hpp"
+#include "core/protocol/tcp_transport.hpp"
 
 namespace cocopp::protocol {
 
 TransportKind parse_transport_kind(const std::string& name) {
   if (name == "pipe") return TransportKind::kPipe;
   if (name == "file") return TransportKind::kFile;
-  throw std::invalid_argument("unknown transport '" + name + "' (use pipe or file)");
+  if (name == "tcp") return TransportKind::kTcp;
+  throw std::invalid_argument("unknown transport '" + name + "' (use pipe, file or tcp)");
 }
 
 std::string transport_name(TransportKind kind) {
-  return kind == TransportKind::kPipe ? "pipe" : "file";
+  switch (kind) {
+    case TransportKind::kPipe:
+      return "pipe";
+    case TransportKind::kFile:
+      return "file";
+    case TransportKind::kTcp:
+      return "tcp";
+  }
+  return "?";
+}
+
+std::vector<std::pair<std::string, std::string>> solver_environment(const ChannelAddress& address) {
+  std::vector<std::pair<std::string, std::string>> variables = {
+      {kTransportVariable, transport_name(address.kind)}, {kChannelVariable, address.channel}};
+  if (address.kind == TransportKind::kTcp) variables.emplace_back(kTokenVariable, address.token);
+  return variables;
+}
+
+ChannelAddress channel_from_environment() {
+  const auto variable = [](const char* name) -> std::string {
+    const char* value = std::getenv(name);
+    if (value == nullptr || *value == '\0') throw TransportError(std::string(name) + " is not set");
+    return value;
+  };
+  ChannelAddress address;
+  const std::string kind = variable(kTransportVariable);
+  try {
+    address.kind = parse_transport_kind(kind);
+  } catch (const std::invalid_argument& e) {
+    throw TransportError(std::string(kTransportVariable) + ": " + e.what());
+  }
+  address.channel = variable(kChannelVariable);
+  if (address.kind == TransportKind::kTcp) address.token = variable(kTokenVariable);
+  return address;
+}
+
+std::unique_ptr<Transport> create_coupler_channel(const CouplerChannelOptions& options) {
+  switch (options.kind) {
+    case TransportKind::kPipe:
+      return PipeTransport::create_for_coupler(options.directory, options.busy_wait);
+    case TransportKind::kFile:
+      return FileTransport::create_for_coupler(options.directory);
+    case TransportKind::kTcp:
+      return TcpTransport::listen(options.host, options.port, options.busy_wait);
+  }
+  throw TransportError("unknown transport");
 }
 
 std::unique_ptr<Transport> create_coupler_channel(TransportKind kind,
                                                   const std::filesystem::path& directory,
                                                   std::chrono::microseconds busy_wait) {
-  if (kind == TransportKind::kPipe) return PipeTransport::create_for_coupler(directory, busy_wait);
-  return FileTransport::create_for_coupler(directory);
+  CouplerChannelOptions options;
+  options.kind = kind;
+  options.directory = directory;
+  options.busy_wait = busy_wait;
+  return create_coupler_channel(options);
+}
+
+std::unique_ptr<Transport> open_solver_channel(const ChannelAddress& address,
+                                               double timeout_seconds,
+                                               const AliveCheck& still_alive_check,
+                                               std::chrono::microseconds busy_wait) {
+  switch (address.kind) {
+    case TransportKind::kPipe:
+      return PipeTransport::open_for_solver(address.channel, timeout_seconds, still_alive_check,
+                                            busy_wait);
+    case TransportKind::kFile:
+      return FileTransport::open_for_solver(address.channel);
+    case TransportKind::kTcp:
+      return TcpTransport::connect_to(address.channel, address.token, timeout_seconds,
+                                      still_alive_check, busy_wait);
+  }
+  throw TransportError("unknown transport");
 }
 
 std::unique_ptr<Transport> open_solver_channel(TransportKind kind,
@@ -32,9 +99,8 @@ std::unique_ptr<Transport> open_solver_channel(TransportKind kind,
                                                double timeout_seconds,
                                                const AliveCheck& still_alive_check,
                                                std::chrono::microseconds busy_wait) {
-  if (kind == TransportKind::kPipe)
-    return PipeTransport::open_for_solver(directory, timeout_seconds, still_alive_check, busy_wait);
-  return FileTransport::open_for_solver(directory);
+  return open_solver_channel({kind, directory.string(), ""}, timeout_seconds, still_alive_check,
+                             busy_wait);
 }
 
 std::chrono::microseconds busy_wait_from_environment() {

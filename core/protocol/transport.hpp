@@ -2,8 +2,9 @@
 // Transports carry frames between the coupler and one solver. Both ends use the same classes;
 // which end is which only matters when the channel is set up:
 //
-//   coupler: create_coupler_channel() -> launch the solver -> connect() -> receive HELLO ...
-//   solver:  open_solver_channel()    -> send HELLO -> receive requests ...
+//   coupler: create_coupler_channel() -> launch the solver with solver_environment(address())
+//            -> connect() -> receive HELLO ...
+//   solver:  open_solver_channel(channel_from_environment()) -> send HELLO -> receive requests
 //
 // Every wait has a timeout and calls a still-alive check at least every 100 ms: the coupler's
 // check throws when the solver process has died, so a crashed solver never leaves the coupler
@@ -15,6 +16,8 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/protocol/frame.hpp"
 
@@ -28,8 +31,11 @@ constexpr double kWaitForever = std::numeric_limits<double>::infinity();
 constexpr std::chrono::milliseconds kAliveCheckInterval{100};
 
 /// Environment variables through which the coupler tells a solver where its channel is.
-constexpr const char* kTransportVariable = "COCOPP_TRANSPORT";  ///< "pipe" or "file"
-constexpr const char* kChannelVariable = "COCOPP_CHANNEL";      ///< absolute directory
+constexpr const char* kTransportVariable = "COCOPP_TRANSPORT";  ///< "pipe", "file" or "tcp"
+/// pipe, file: the channel's absolute directory; tcp: the coupler's "host:port"
+constexpr const char* kChannelVariable = "COCOPP_CHANNEL";
+/// tcp: the run's secret, which the solver sends first to be let in (never on a command line)
+constexpr const char* kTokenVariable = "COCOPP_TOKEN";
 /// Seconds the solver reads its request pipe without sleeping ("0.001"; unset: 0).
 constexpr const char* kBusyWaitVariable = "COCOPP_BUSY_WAIT";
 
@@ -51,15 +57,32 @@ class PeerClosed : public TransportError {
   using TransportError::TransportError;
 };
 
-enum class TransportKind { kPipe, kFile };
+enum class TransportKind { kPipe, kFile, kTcp };
 
-/// "pipe" or "file"; throws std::invalid_argument otherwise.
+/// "pipe", "file" or "tcp"; throws std::invalid_argument otherwise.
 TransportKind parse_transport_kind(const std::string& name);
 std::string transport_name(TransportKind kind);
+
+/// Where a solver finds its channel: what the coupler puts into the solver's environment.
+struct ChannelAddress {
+  TransportKind kind = TransportKind::kPipe;
+  std::string channel;  ///< pipe, file: the directory; tcp: "host:port"
+  std::string token;    ///< tcp: the run's secret; empty otherwise
+};
+
+/// The variables that tell a solver `address`: COCOPP_TRANSPORT, COCOPP_CHANNEL (and
+/// COCOPP_TOKEN for tcp).
+std::vector<std::pair<std::string, std::string>> solver_environment(const ChannelAddress& address);
+/// Solver side: the address in this process's environment; throws TransportError naming the
+/// variable that is missing or wrong.
+ChannelAddress channel_from_environment();
 
 class Transport {
  public:
   virtual ~Transport() = default;
+
+  /// Coupler side: where the solver finds this channel.
+  virtual ChannelAddress address() const = 0;
 
   /// Coupler side, after launching the solver: wait until the solver has opened its end.
   virtual void connect(double timeout_seconds, const AliveCheck& still_alive_check) = 0;
@@ -86,15 +109,34 @@ class Transport {
   std::size_t max_payload_ = kMaxPayloadBytes;
 };
 
-/// Coupler side, before launching the solver: create the channel in `directory` (the FIFOs,
-/// or nothing but a cleanup of stale message files). The returned transport removes what it
-/// created when it is destroyed. `busy_wait`: the pipe transport's receive reads this long
-/// without sleeping before it polls (PipeTransport::receive).
+/// What the coupler's end of a channel is made from.
+struct CouplerChannelOptions {
+  TransportKind kind = TransportKind::kPipe;
+  /// pipe, file: where the channel lives (the solver's working directory)
+  std::filesystem::path directory;
+  /// pipe, tcp: a receive reads this long without sleeping before it polls
+  /// (StreamTransport::receive)
+  std::chrono::microseconds busy_wait{0};
+  /// tcp: the address to listen on (and that the solver connects to), and the port (0: any
+  /// free one, which address() then reports)
+  std::string host = "127.0.0.1";
+  int port = 0;
+};
+
+/// Coupler side, before launching the solver: create the channel (the FIFOs; a cleanup of
+/// stale message files; a listening socket). The returned transport removes what it created
+/// when it is destroyed.
+std::unique_ptr<Transport> create_coupler_channel(const CouplerChannelOptions& options);
+/// The same for a pipe or file channel in `directory`.
 std::unique_ptr<Transport> create_coupler_channel(
     TransportKind kind, const std::filesystem::path& directory,
     std::chrono::microseconds busy_wait = std::chrono::microseconds(0));
 
-/// Solver side: open the channel the coupler created in `directory`; `busy_wait` as above.
+/// Solver side: open the channel the coupler created at `address`; `busy_wait` as above.
+std::unique_ptr<Transport> open_solver_channel(
+    const ChannelAddress& address, double timeout_seconds, const AliveCheck& still_alive_check,
+    std::chrono::microseconds busy_wait = std::chrono::microseconds(0));
+/// The same for a pipe or file channel in `directory`.
 std::unique_ptr<Transport> open_solver_channel(
     TransportKind kind, const std::filesystem::path& directory, double timeout_seconds,
     const AliveCheck& still_alive_check,

@@ -27,6 +27,7 @@ Run it through `cocopp run case.yaml` with a solver of type `process` whose comm
 (`command: [python3, wall.py]`). Needs Python 3.7 and NumPy.
 """
 import os
+import socket
 import struct
 import sys
 import time
@@ -261,9 +262,11 @@ def serve(solver, argv=None):
             channel = _PipeChannel(channel_directory, coupler_pid)
         elif transport == "file":
             channel = _FileChannel(channel_directory, coupler_pid)
+        elif transport == "tcp":
+            channel = _TcpChannel(channel_directory, os.environ.get("COCOPP_TOKEN", ""))
         else:
-            raise ProtocolError(f"unknown transport '{transport}' (pipe or file)")
-    except (OSError, ProtocolError) as error:
+            raise ProtocolError(f"unknown transport '{transport}' (pipe, file or tcp)")
+    except (OSError, ProtocolError, _ChannelLost) as error:
         print(f"{program}: cannot connect to the cocopp coupler: {error}", file=sys.stderr)
         return 1
     return _Server(solver, channel).run()
@@ -553,6 +556,59 @@ class _PipeChannel:
                 data = data[os.write(self.replies, data):]
         except BrokenPipeError as error:
             raise _ChannelLost("the coupler closed the reply pipe") from error
+
+
+class _TcpChannel:
+    """One TCP connection to the coupler at "host:port": the greeting with the run's token
+    first, the coupler's welcome, then frames as over the pipes (docs/protocol.md)."""
+
+    GREETING = b"COCOPP-TCP-1 "
+    WELCOME = b"COCOPP-WELCOME\n"
+
+    def __init__(self, channel, token, timeout=60.0):
+        host, _, port = channel.rpartition(":")
+        host = host[1:-1] if host.startswith("[") and host.endswith("]") else host
+        if not host or not port.isdigit():
+            raise ProtocolError(f"COCOPP_CHANNEL '{channel}' is not host:port")
+        if len(token) != 64:
+            raise ProtocolError("COCOPP_TOKEN is not the run's token (64 hex digits)")
+        self.socket = socket.create_connection((host, int(port)), timeout=timeout)
+        self.socket.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+        self.socket.setsockopt(socket.SOL_SOCKET, socket.SO_KEEPALIVE, 1)
+        self.socket.sendall(self.GREETING + token.encode() + b"\n")
+        try:
+            welcome = self._read_exactly(len(self.WELCOME))
+        except _ChannelLost:
+            raise _ChannelLost(f"the coupler at {channel} refused this solver (is COCOPP_TOKEN "
+                               "this run's token?)") from None
+        if welcome != self.WELCOME:
+            raise ProtocolError(f"the peer at {channel} is not a cocopp coupler")
+        self.socket.settimeout(None)  # the coupler's own timeouts bound a step
+
+    def _read_exactly(self, size):
+        chunks, remaining = [], size
+        while remaining > 0:
+            try:
+                chunk = self.socket.recv(min(remaining, 1 << 20))
+            except OSError as error:
+                raise _ChannelLost(f"the connection to the coupler was lost: {error}") from error
+            if not chunk:
+                raise _ChannelLost("the coupler closed the connection")
+            chunks.append(chunk)
+            remaining -= len(chunk)
+        return b"".join(chunks)
+
+    def receive(self):
+        (length,) = struct.unpack("<I", self._read_exactly(4))
+        if not 1 <= length <= MAX_PAYLOAD:
+            raise ProtocolError(f"a frame of {length} bytes was announced (corrupt stream?)")
+        return self._read_exactly(length)
+
+    def send(self, payload):
+        try:
+            self.socket.sendall(struct.pack("<I", len(payload)) + payload)
+        except OSError as error:
+            raise _ChannelLost(f"the connection to the coupler was lost: {error}") from error
 
 
 class _FileChannel:

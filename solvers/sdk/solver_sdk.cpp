@@ -303,7 +303,7 @@ int serve(Solver& solver, int argc, char** argv) {
   std::unique_ptr<protocol::Transport> link;
   try {
     link = protocol::open_solver_channel(
-        protocol::parse_transport_kind(transport), channel, kConnectTimeoutSeconds,
+        protocol::channel_from_environment(), kConnectTimeoutSeconds,
         [coupler_pid] {
           if (::getppid() != coupler_pid) throw protocol::PeerClosed("the coupler has exited");
         },

@@ -1,6 +1,9 @@
+#include <arpa/inet.h>
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
 #include <sys/resource.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -14,6 +17,7 @@
 #include "core/protocol/file_transport.hpp"
 #include "core/protocol/messages.hpp"
 #include "core/protocol/pipe_transport.hpp"
+#include "core/protocol/tcp_transport.hpp"
 #include "core/protocol/transport.hpp"
 #include "tests/support/temporary_directory.hpp"
 
@@ -54,7 +58,7 @@ class TransportTest : public ::testing::TestWithParam<TransportKind> {
 TEST_P(TransportTest, RoundTripBetweenThreads) {
   auto coupler = create_coupler_channel(GetParam(), channel_directory_.path());
   std::thread solver([&] {
-    auto channel = open_solver_channel(GetParam(), channel_directory_.path(), 10.0, nullptr);
+    auto channel = open_solver_channel(coupler->address(), 10.0, nullptr);
     echo_until_stop(*channel);
   });
   coupler->connect(10.0, nullptr);
@@ -72,7 +76,7 @@ TEST_P(TransportTest, RoundTripBetweenThreads) {
 TEST_P(TransportTest, LargeFramesCrossWhole) {
   auto coupler = create_coupler_channel(GetParam(), channel_directory_.path());
   std::thread solver([&] {
-    auto channel = open_solver_channel(GetParam(), channel_directory_.path(), 10.0, nullptr);
+    auto channel = open_solver_channel(coupler->address(), 10.0, nullptr);
     echo_until_stop(*channel);
   });
   coupler->connect(10.0, nullptr);
@@ -90,7 +94,7 @@ TEST_P(TransportTest, RoundTripWithAForkedSolver) {
   if (pid == 0) {
     int code = 0;
     try {
-      auto channel = open_solver_channel(GetParam(), channel_directory_.path(), 10.0, nullptr);
+      auto channel = open_solver_channel(coupler->address(), 10.0, nullptr);
       echo_until_stop(*channel);
     } catch (...) {
       code = 1;
@@ -113,7 +117,7 @@ TEST_P(TransportTest, RoundTripWithAForkedSolver) {
 
 TEST_P(TransportTest, ReceiveTimesOutAndChecksTheSolverMeanwhile) {
   auto coupler = create_coupler_channel(GetParam(), channel_directory_.path());
-  auto solver = open_solver_channel(GetParam(), channel_directory_.path(), 10.0, nullptr);
+  auto solver = open_solver_channel(coupler->address(), 10.0, nullptr);
   coupler->connect(10.0, nullptr);
   int checks = 0;
   const auto start = Clock::now();
@@ -126,7 +130,7 @@ TEST_P(TransportTest, ReceiveTimesOutAndChecksTheSolverMeanwhile) {
 
 TEST_P(TransportTest, AnExceptionFromTheAliveCheckAbortsTheWait) {
   auto coupler = create_coupler_channel(GetParam(), channel_directory_.path());
-  auto solver = open_solver_channel(GetParam(), channel_directory_.path(), 10.0, nullptr);
+  auto solver = open_solver_channel(coupler->address(), 10.0, nullptr);
   coupler->connect(10.0, nullptr);
   struct SolverDied {};
   const auto start = Clock::now();
@@ -137,7 +141,7 @@ TEST_P(TransportTest, AnExceptionFromTheAliveCheckAbortsTheWait) {
 TEST_P(TransportTest, ChannelFilesAreRemovedWithTheCouplerEnd) {
   {
     auto coupler = create_coupler_channel(GetParam(), channel_directory_.path());
-    auto solver = open_solver_channel(GetParam(), channel_directory_.path(), 10.0, nullptr);
+    auto solver = open_solver_channel(coupler->address(), 10.0, nullptr);
     coupler->connect(10.0, nullptr);
     coupler->send(encode_empty(MessageType::kStop));  // left unread on purpose
     solver->send(encode_empty(MessageType::kOk));
@@ -146,7 +150,8 @@ TEST_P(TransportTest, ChannelFilesAreRemovedWithTheCouplerEnd) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Kinds, TransportTest,
-                         ::testing::Values(TransportKind::kPipe, TransportKind::kFile),
+                         ::testing::Values(TransportKind::kPipe, TransportKind::kFile,
+                                           TransportKind::kTcp),
                          [](const auto& info) { return transport_name(info.param); });
 
 TEST(PipeTransportTest, ConnectTimesOutWhenNoSolverOpensThePipe) {
@@ -218,7 +223,7 @@ TEST(FileTransportTest, ATruncatedMessageFileIsAProtocolError) {
 // byte of payload is allocated or awaited; frames within it, also large ones, cross whole.
 TEST_P(TransportTest, AFrameLongerThanTheBoundIsRefusedBeforeItIsRead) {
   auto coupler = create_coupler_channel(GetParam(), channel_directory_.path());
-  auto solver = open_solver_channel(GetParam(), channel_directory_.path(), 10.0, nullptr);
+  auto solver = open_solver_channel(coupler->address(), 10.0, nullptr);
   coupler->connect(10.0, nullptr);
   const auto values = ramp(300000);  // 2.4 MB: more than one read chunk of the pipe
   coupler->set_max_payload(encode_data(values).size());
@@ -385,6 +390,122 @@ TEST(PipeTransportTest, BusyWaitingReceiveReportsASolverThatClosedThePipe) {
   EXPECT_EQ(decode_data(coupler->receive(10.0, nullptr)), ramp(3));
   solver.reset();
   EXPECT_THROW(coupler->receive(5.0, nullptr), PeerClosed);
+}
+
+/// A raw TCP client of the coupler's port on loopback (a peer that is not a cocopp solver).
+int raw_client(const ChannelAddress& address) {
+  const auto [host, port] = split_host_port(address.channel);
+  const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(static_cast<std::uint16_t>(port));
+  ::inet_pton(AF_INET, host.c_str(), &to.sin_addr);
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&to), sizeof to) != 0) {
+    ::close(fd);
+    return -1;
+  }
+  return fd;
+}
+
+/// What the peer `fd` got until the coupler closed it (within 5 s).
+std::string read_until_closed(int fd) {
+  std::string got;
+  char buffer[256];
+  ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+  timeval limit{5, 0};
+  ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &limit, sizeof limit);
+  for (ssize_t n; (n = ::read(fd, buffer, sizeof buffer)) > 0;) got.append(buffer, n);
+  ::close(fd);
+  return got;
+}
+
+// Issue 50: the coupler lets in only the peer that proves the run's token. A peer with a wrong
+// one and a peer that says nothing are refused (and recorded), get not a byte, and do not keep
+// the solver out; once the solver is in, the port is closed.
+TEST(TcpTransportTest, OnlyThePeerWithTheTokenIsLetIn) {
+  auto coupler = create_coupler_channel({TransportKind::kTcp, {}, {}, "127.0.0.1", 0});
+  const ChannelAddress address = coupler->address();
+  EXPECT_EQ(address.channel.rfind("127.0.0.1:", 0), 0u) << address.channel;
+  EXPECT_EQ(address.token.size(), TcpTransport::kTokenCharacters);
+  const int silent = raw_client(address);
+  const int impostor = raw_client(address);
+  ASSERT_GE(silent, 0);
+  ASSERT_GE(impostor, 0);
+  const int stranger = raw_client(address);
+  ASSERT_GE(stranger, 0);
+  std::string wrong = std::string(TcpTransport::kGreeting) + std::string(64, 'a') + "\n";
+  ASSERT_EQ(::write(impostor, wrong.data(), wrong.size()), static_cast<ssize_t>(wrong.size()));
+  const std::string http = "GET / HTTP/1.0\r\n\r\n";
+  ASSERT_EQ(::write(stranger, http.data(), http.size()), static_cast<ssize_t>(http.size()));
+  auto solver = open_solver_channel(address, 10.0, nullptr);
+  const auto start = Clock::now();
+  coupler->connect(10.0, nullptr);
+  EXPECT_LT(seconds_since(start), 2.0);  // the silent peer did not hold the solver up
+  solver->send(encode_empty(MessageType::kOk));
+  decode_empty(coupler->receive(10.0, nullptr), MessageType::kOk);
+  coupler->send(encode_empty(MessageType::kStop));
+  EXPECT_EQ(message_type(solver->receive(10.0, nullptr)), MessageType::kStop);
+
+  EXPECT_EQ(read_until_closed(impostor), "");
+  EXPECT_EQ(read_until_closed(silent), "");
+  EXPECT_EQ(read_until_closed(stranger), "");
+  const auto& refused = dynamic_cast<const TcpTransport&>(*coupler).refused();
+  ASSERT_EQ(refused.size(), 3u);
+  const auto refused_for = [&](const std::string& why) {
+    return std::count_if(refused.begin(), refused.end(), [&](const std::string& entry) {
+      return entry.rfind("127.0.0.1:", 0) == 0 && entry.find(why) != std::string::npos;
+    });
+  };
+  EXPECT_EQ(refused_for("a wrong token"), 1);
+  EXPECT_EQ(refused_for("not a cocopp solver"), 1);
+  EXPECT_EQ(refused_for("another peer proved the token first"), 1);
+  EXPECT_EQ(raw_client(address), -1);  // a second client: nobody listens any more
+}
+
+TEST(TcpTransportTest, AWrongTokenIsToldOnTheSolversSideAndTheCouplerTimesOutNamingIt) {
+  auto coupler = create_coupler_channel({TransportKind::kTcp, {}, {}, "127.0.0.1", 0});
+  ChannelAddress address = coupler->address();
+  address.token = std::string(64, '0');
+  auto solver = open_solver_channel(address, 10.0, nullptr);
+  try {
+    coupler->connect(0.5, nullptr);
+    FAIL() << "no exception";
+  } catch (const TransportTimeout& e) {
+    EXPECT_NE(std::string(e.what()).find("refused 127.0.0.1:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("a wrong token"), std::string::npos) << e.what();
+  }
+  try {
+    solver->receive(5.0, nullptr);
+    FAIL() << "no exception";
+  } catch (const TransportError& e) {
+    EXPECT_NE(std::string(e.what()).find("refused this solver (is COCOPP_TOKEN this run's"),
+              std::string::npos)
+        << e.what();
+  }
+  address.token = "short";
+  EXPECT_THROW(open_solver_channel(address, 1.0, nullptr), TransportError);
+}
+
+TEST(TcpTransportTest, ASolverThatGoesAwayIsAClosedPeer) {
+  auto coupler = create_coupler_channel({TransportKind::kTcp, {}, {}, "127.0.0.1", 0});
+  auto solver = open_solver_channel(coupler->address(), 10.0, nullptr);
+  coupler->connect(10.0, nullptr);
+  solver.reset();
+  EXPECT_THROW(coupler->receive(5.0, nullptr), PeerClosed);
+}
+
+TEST(TcpTransportTest, ChannelsAndAddressesAreCheckedWithWhatIsWrong) {
+  EXPECT_EQ(split_host_port("10.0.0.2:40123"), std::make_pair(std::string("10.0.0.2"), 40123));
+  EXPECT_EQ(split_host_port("[::1]:7"), std::make_pair(std::string("::1"), 7));
+  for (const char* bad : {"10.0.0.2", ":80", "host:0", "host:99999", "host:8o"})
+    EXPECT_THROW(split_host_port(bad), TransportError) << bad;
+  try {
+    create_coupler_channel({TransportKind::kTcp, {}, {}, "192.0.2.77", 0});
+    FAIL() << "no exception";
+  } catch (const TransportError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot listen on 192.0.2.77:0"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
