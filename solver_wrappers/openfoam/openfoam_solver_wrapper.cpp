@@ -60,7 +60,7 @@ std::vector<std::pair<std::string, std::string>> sensitivity_probe(const Setting
 }
 
 DefaultCommand pimple_foam_command(const std::vector<std::string>& boundary_names, int cores,
-                                   const std::string& gap_patch) {
+                                   const std::string& gap_patch, bool tcp) {
   const std::string application = (builtin_solver_directory() / "cocoppPimpleFoam").string();
   // OpenFOAM's list syntax for the word list option: -patches '(wall top)'.
   std::vector<std::string> patches = {"-patches", "(" + join(boundary_names, " ") + ")"};
@@ -79,9 +79,11 @@ DefaultCommand pimple_foam_command(const std::vector<std::string>& boundary_name
                                         "-x",
                                         protocol::kTransportVariable,
                                         "-x",
-                                        protocol::kChannelVariable,
-                                        application,
-                                        "-parallel"};
+                                        protocol::kChannelVariable};
+  // The TCP channel's secret goes to the ranks as the rest of the channel does: by mpirun's
+  // environment, never on a command line.
+  if (tcp) arguments.insert(arguments.end(), {"-x", protocol::kTokenVariable});
+  arguments.insert(arguments.end(), {application, "-parallel"});
   arguments.insert(arguments.end(), patches.begin(), patches.end());
   return {"mpirun", "", arguments, environment, {}};
 }
@@ -117,7 +119,10 @@ class OpenFoamSolverWrapper : public ProcessSolverWrapper {
   OpenFoamSolverWrapper(const Settings& settings, const RunSettings& run,
                         std::vector<std::string> boundary_names, int cores,
                         const std::string& gap_patch)
-      : ProcessSolverWrapper(settings, run, pimple_foam_command(boundary_names, cores, gap_patch)),
+      : ProcessSolverWrapper(
+            settings, run,
+            pimple_foam_command(boundary_names, cores, gap_patch,
+                                settings.get<std::string>("transport", "") == "tcp")),
         boundary_names_(std::move(boundary_names)),
         cores_(cores),
         delta_t_(run.delta_t),

@@ -11,6 +11,7 @@
 
 #include "core/case/path_problem.hpp"
 #include "core/case/suggest.hpp"
+#include "core/protocol/tcp_transport.hpp"
 #include "solver_wrappers/process/child_process.hpp"
 #include "solver_wrappers/process/python_hint.hpp"
 #include "solver_wrappers/solver_error.hpp"
@@ -187,8 +188,9 @@ ProcessSolverWrapper::ProcessSolverWrapper(const Settings& settings, const RunSe
   // The built-in check reads the default input file format: not with a command of the user's.
   if (default_command && !settings.has("command"))
     check_arguments_ = default_command->check_arguments;
-  transport_kind_ =
-      protocol::parse_transport_kind(settings.get_choice("transport", "pipe", {"pipe", "file"}));
+  transport_kind_ = protocol::parse_transport_kind(
+      settings.get_choice("transport", "pipe", {"pipe", "file", "tcp"}));
+  read_tcp_keys(settings);
   timeout_ = settings.get_in_range("timeout", 600.0, Range::timeout());  // seconds
   startup_timeout_ = settings.get_in_range("startup_timeout", 60.0, Range::timeout());
   // Reading the reply pipe without sleeping saves a process wake-up per message on fast solvers
@@ -205,6 +207,25 @@ ProcessSolverWrapper::ProcessSolverWrapper(const Settings& settings, const RunSe
       settings.has("log_file") ? settings.where("log_file") : working_directory_where_;
   // Steps of its own per coupling time step (docs/coupling.md, "Substeps").
   substeps_ = settings.get_int_in_range("substeps", 1, 1, 10000);
+}
+
+void ProcessSolverWrapper::read_tcp_keys(const Settings& settings) {
+  if (transport_kind_ != protocol::TransportKind::kTcp) {
+    for (const char* key : {"host", "port"})
+      if (settings.has(key))
+        settings.fail(key, "is a key of transport: tcp (this solver uses " +
+                               protocol::transport_name(transport_kind_) + ")");
+  }
+  // Loopback unless the case names an interface: a solver on another host needs it to.
+  tcp_host_ = settings.get<std::string>("host", "127.0.0.1");
+  if (tcp_host_.empty() || tcp_host_.find_first_of(" \t/") != std::string::npos)
+    settings.fail("host", "give an address or a name of this machine, e.g. 10.0.0.1");
+  tcp_port_ = settings.get_int_in_range("port", 0, 0, 65535);
+  launcher_ = settings.get<std::vector<std::string>>("launcher", {});
+  if (settings.has("launcher") && (launcher_.empty() || launcher_[0].empty()))
+    settings.fail("launcher",
+                  "give the command that starts the solver elsewhere, e.g. "
+                  "[srun, --nodes=1, --ntasks=1, --nodelist=node2]");
 }
 
 void ProcessSolverWrapper::read_command(const Settings& settings,
@@ -247,7 +268,8 @@ void ProcessSolverWrapper::set_default_name(const std::string& name) {
 }
 
 std::string ProcessSolverWrapper::describe() const {
-  return fmt::format("{}: {} (in {}; log {}; {} transport{})", name_, join(command_, " "),
+  return fmt::format("{}: {}{} (in {}; log {}; {} transport{})", name_,
+                     launcher_.empty() ? "" : join(launcher_, " ") + " ", join(command_, " "),
                      working_directory_.string(), log_file_.string(),
                      protocol::transport_name(transport_kind_),
                      substeps_ > 1 ? fmt::format("; {} substeps a time step", substeps_) : "");
@@ -340,13 +362,18 @@ void ProcessSolverWrapper::initialize() {
 void ProcessSolverWrapper::launch() {
   try {
     std::filesystem::create_directories(log_file_.parent_path());
-    channel_ = protocol::create_coupler_channel(transport_kind_, working_directory_, busy_wait_);
+    protocol::CouplerChannelOptions channel;
+    channel.kind = transport_kind_;
+    channel.directory = working_directory_;
+    channel.busy_wait = busy_wait_;
+    channel.host = tcp_host_;
+    channel.port = tcp_port_;
+    channel_ = protocol::create_coupler_channel(channel);
     ChildOptions options;
-    options.command = command_;
+    options.command = launcher_;
+    options.command.insert(options.command.end(), command_.begin(), command_.end());
     options.working_directory = working_directory_;
-    options.environment = {
-        {protocol::kTransportVariable, protocol::transport_name(transport_kind_)},
-        {protocol::kChannelVariable, working_directory_.string()}};
+    options.environment = protocol::solver_environment(channel_->address());
     if (solver_busy_wait_ > 0.0)
       options.environment.emplace_back(protocol::kBusyWaitVariable,
                                        fmt::format("{}", solver_busy_wait_));
@@ -365,10 +392,17 @@ void ProcessSolverWrapper::launch() {
   state_ = State::kRunning;
 }
 
+void ProcessSolverWrapper::report_refused_peers() const {
+  if (const auto* tcp = dynamic_cast<const protocol::TcpTransport*>(channel_.get()))
+    for (const auto& peer : tcp->refused())
+      fmt::print(stderr, "warning: solver '{}': refused a connection from {}\n", name_, peer);
+}
+
 void ProcessSolverWrapper::wait_for_hello() {
   // One deadline for both stages of the startup.
   const auto start = std::chrono::steady_clock::now();
   guarded("startup", startup_timeout_, [&] { channel_->connect(startup_timeout_, alive_check()); });
+  report_refused_peers();
   const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
   const auto hello =
       call("startup", nullptr, MessageType::kHello,

@@ -104,6 +104,10 @@ class ProcessSolverWrapper : public SolverWrapper {
   enum class State { kNotStarted, kRunning, kStopped };
 
   void read_command(const Settings& settings, const std::optional<DefaultCommand>& default_command);
+  /// transport: tcp's `host` and `port`, and `launcher` (docs/clusters.md).
+  void read_tcp_keys(const Settings& settings);
+  /// The peers the TCP channel refused while it waited for the solver, as warnings.
+  void report_refused_peers() const;
   void launch();
   void wait_for_hello();
   void ensure_running() const;
@@ -155,6 +159,9 @@ class ProcessSolverWrapper : public SolverWrapper {
   std::vector<std::string> command_;
   std::string input_file_;  ///< known for built-in solvers only (checked by check())
   protocol::TransportKind transport_kind_ = protocol::TransportKind::kPipe;
+  std::string tcp_host_;               ///< transport: tcp: the address the coupler listens on
+  int tcp_port_ = 0;                   ///< and its port (0: any free one)
+  std::vector<std::string> launcher_;  ///< put before the command: srun, mpirun, ssh, ...
   double timeout_ = 600.0;
   double startup_timeout_ = 60.0;
   std::chrono::microseconds busy_wait_{1000};  ///< of the pipe transport's receive

@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """The Python solver SDK (solvers/sdk/cocopp_sdk.py) against the coupler, ctest
-`python_sdk`: examples/external_solver/ring_wall.py coupled to the built-in tube flow over both
-transports (the built-in ring model's results to the bit), solver-coupling convergence reported
-by the solver (and refused by one that cannot), and what goes wrong on the solver's side
+`python_sdk`: examples/external_solver/ring_wall.py coupled to the built-in tube flow over the
+pipe, file and tcp transports (the built-in ring model's results to the bit), solver-coupling
+convergence reported by the solver (and refused by one that cannot), and what goes wrong on
+the solver's side
 reaching the user as the C++ SDK sends it: a rejected input, a wrong output size, an
 exception, a start outside cocopp, --help. Substeps: the SDK drives a window of two substeps
 as the C++ SDK does (the built-in ring model's results to the bit), and a solver that cannot
@@ -107,7 +108,7 @@ def main():
         project = os.path.join(scratch, "external_solver")
         shutil.copytree(os.path.join(source, "examples/external_solver"), project,
                         ignore=shutil.ignore_patterns("results", "build", "*.log"))
-        for transport in ("pipe", "file"):
+        for transport in ("pipe", "file", "tcp"):
             write_case(project, f"{transport}.yaml", "python3, ../ring_wall.py", transport)
             result = cocopp_run(bin_dir, project, f"{transport}.yaml", env)
             check(result.returncode == 0, f"ring_wall.py runs over the {transport} transport")

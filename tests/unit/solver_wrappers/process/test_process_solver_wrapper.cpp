@@ -320,7 +320,8 @@ TEST_P(ProcessSolverWrapperTest, TheDestructorStopsARunningSolver) {
       std::filesystem::exists(directory_ / "flow" / protocol::PipeTransport::kToSolverFifo));
 }
 
-INSTANTIATE_TEST_SUITE_P(Transports, ProcessSolverWrapperTest, ::testing::Values("pipe", "file"),
+INSTANTIATE_TEST_SUITE_P(Transports, ProcessSolverWrapperTest,
+                         ::testing::Values("pipe", "file", "tcp"),
                          [](const auto& info) { return info.param; });
 
 class ProcessSolverWrapperSetupTest : public ::testing::Test {
@@ -430,6 +431,19 @@ TEST_F(ProcessSolverWrapperSetupTest, SettingsAreValidatedWhenBuilt) {
                   "unknown key 'timout'; did you mean 'timeout'");
   EXPECT_CONTAINS(error_message<CaseError>([&] { create_flow("command: [./s]\ninput_file: x\n"); }),
                   "unknown key 'input_file'");
+  // transport: tcp's keys (docs/clusters.md).
+  EXPECT_CONTAINS(error_message<CaseError>([&] { create_flow("command: [./s]\nport: 4000\n"); }),
+                  "'port': is a key of transport: tcp (this solver uses pipe)");
+  EXPECT_CONTAINS(error_message<CaseError>(
+                      [&] { create_flow("command: [./s]\ntransport: tcp\nport: 70000\n"); }),
+                  "'port'");
+  EXPECT_CONTAINS(error_message<CaseError>(
+                      [&] { create_flow("command: [./s]\ntransport: tcp\nhost: 'a b'\n"); }),
+                  "give an address or a name of this machine");
+  EXPECT_CONTAINS(error_message<CaseError>([&] { create_flow("command: [./s]\nlauncher: []\n"); }),
+                  "give the command that starts the solver elsewhere");
+  const auto launched = create_flow("command: [./s]\nlauncher: [srun, -N1]\ntransport: tcp\n");
+  EXPECT_CONTAINS(dynamic_cast<ProcessSolverWrapper&>(*launched).describe(), "srun -N1 ./s (in ");
 }
 
 TEST_F(ProcessSolverWrapperSetupTest, BuiltinTubeSolversDefaultToTheBinDirectory) {

@@ -1,0 +1,203 @@
+#!/usr/bin/python3
+"""Two hosts on one machine (issue 50, docs/clusters.md), ctest `two_hosts`: two network
+namespaces joined by a veth pair, the coupler in one ("host A", 10.231.50.1), the tube's
+structure solver started in the other ("host B", 10.231.50.2) by its wrapper's `launcher`
+(`ip netns exec B`) and coupled over `transport: tcp`:
+
+- the tube (examples/tube/flow_structure) coupled across gives the one-machine run's results
+  to the bit;
+- the link cut in the middle of a run (the veth deleted): the run stops with an error naming
+  the solver and the lost connection within the keepalive's 20 s, the steps done so far stay
+  readable, and no solver process is left;
+- a solver that cannot reach the coupler's address: a clear error, no hang;
+- with --openfoam, examples/tube/openfoam_wedge on 2 MPI ranks (case_2_ranks.yaml) with the
+  fluid in host B: mpirun and its ranks there, rank 0 coupled over TCP; the one-machine run's
+  results to the bit.
+
+Needs root (network namespaces); CI runs as root.
+
+usage: test_two_hosts.py BIN_DIR SOURCE_DIR [--openfoam]
+"""
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+import h5py
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from test_install import check, same_results  # noqa: E402
+
+TAG = f"cc{os.getpid() % 100000}"
+HOST_A, HOST_B = f"{TAG}a", f"{TAG}b"
+ADDRESS_A, ADDRESS_B = "10.231.50.1", "10.231.50.2"
+
+
+def ip(*arguments, accepted=(0,)):
+    result = subprocess.run(["ip", *arguments], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                            text=True)
+    if result.returncode not in accepted:
+        sys.exit(f"FAILED: ip {' '.join(arguments)}: {result.stdout}")
+
+
+def make_hosts():
+    """Two namespaces, a veth pair between them, each end with its address, loopback up."""
+    for host in (HOST_A, HOST_B):
+        ip("netns", "add", host)
+        ip("-n", host, "link", "set", "lo", "up")
+    ip("link", "add", f"{TAG}va", "netns", HOST_A, "type", "veth", "peer", "name", f"{TAG}vb",
+       "netns", HOST_B)
+    for host, end, address in ((HOST_A, "va", ADDRESS_A), (HOST_B, "vb", ADDRESS_B)):
+        ip("-n", host, "addr", "add", f"{address}/24", "dev", f"{TAG}{end}")
+        ip("-n", host, "link", "set", f"{TAG}{end}", "up")
+
+
+def remove_hosts():
+    for host in (HOST_A, HOST_B):
+        ip("netns", "delete", host, accepted=(0, 1, 2))
+
+
+def write_case(directory, source, steps, structure_keys):
+    """examples/tube/flow_structure in `directory`, `steps` steps, the structure's wrapper with
+    `structure_keys` (YAML lines)."""
+    shutil.copytree(os.path.join(source, "examples/tube/flow_structure"), directory,
+                    ignore=shutil.ignore_patterns("results"))
+    path = os.path.join(directory, "case.yaml")
+    text = open(path).read().replace("number_of_timesteps: 100",
+                                     f"number_of_timesteps: {steps}")
+    text = text.replace("    working_directory: structure\n",
+                        "    working_directory: structure\n" + structure_keys)
+    open(path, "w").write(text)
+
+
+def in_host_a(bin_dir, directory, timeout):
+    """`cocopp run` in host A: its result and how long it took."""
+    start = time.monotonic()
+    result = subprocess.run(["ip", "netns", "exec", HOST_A, os.path.join(bin_dir, "cocopp"),
+                             "run", os.path.join(directory, "case.yaml")],
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                            timeout=timeout)
+    return result, time.monotonic() - start
+
+
+def solvers_left(directory):
+    """Processes still running in `directory` (their working directory)."""
+    left = []
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            if os.readlink(f"/proc/{pid}/cwd").startswith(directory):
+                left.append(pid)
+        except OSError:
+            pass
+    return left
+
+
+def same_datasets(reference, other, label):
+    """Every dataset of the interfaces, residuals and iterations equal to the bit."""
+    with h5py.File(reference, "r") as a, h5py.File(other, "r") as b:
+        names = []
+        a.visititems(lambda name, item: names.append(name)
+                     if isinstance(item, h5py.Dataset)
+                     and name.split("/")[0] in ("x", "y", "residuals", "steps") else None)
+        differ = [name for name in names if name != "steps/wall_time"
+                  and (name not in b or not (a[name][()] == b[name][()]).all())]
+        check(names and not differ,
+              f"{label}: {len(names)} datasets equal to the bit (differ: {differ[:5]})")
+
+
+def wedge_across(bin_dir, source, scratch, across):
+    """The OpenFOAM wedge on 2 ranks, on one machine and with the fluid in host B."""
+    runs = {}
+    for name, keys in (("local", ""), ("remote", across)):
+        directory = os.path.join(scratch, f"wedge_{name}")
+        shutil.copytree(os.path.join(source, "examples/tube/openfoam_wedge"), directory,
+                        ignore=shutil.ignore_patterns("results", "processor*"))
+        subprocess.run(["blockMesh"], cwd=os.path.join(directory, "fluid"), check=True,
+                       stdout=subprocess.DEVNULL, env=dict(os.environ,
+                                                           WM_PROJECT_DIR="/usr/share/openfoam"))
+        path = os.path.join(directory, "case_2_ranks.yaml")
+        text = open(path).read()
+        rep_text = "    cores: 2\n"
+        assert text.count(rep_text) == 1
+        open(path, "w").write(text.replace(rep_text, rep_text + keys))
+        command = [os.path.join(bin_dir, "cocopp"), "run", "-q", path]
+        if name == "remote":
+            command = ["ip", "netns", "exec", HOST_A] + command
+        result = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                text=True)
+        check(result.returncode in (0, 3),
+              f"the OpenFOAM wedge on 2 ranks, {name}\n{result.stdout[-1500:]}")
+        runs[name] = os.path.join(directory, "results/case_2_ranks.h5")
+    same_datasets(runs["local"], runs["remote"], "the OpenFOAM wedge with its fluid across")
+
+
+def main():
+    bin_dir, source = sys.argv[1], sys.argv[2]
+    if os.geteuid() != 0:
+        sys.exit("FAILED: needs root for network namespaces (CI runs as root)")
+    across = f"    transport: tcp\n    host: {ADDRESS_A}\n    launcher: [ip, netns, exec, {HOST_B}]\n"
+    remove_hosts()
+    make_hosts()
+    try:
+        with tempfile.TemporaryDirectory() as scratch:
+            local = os.path.join(scratch, "local")
+            write_case(local, source, 100, "")
+            result = subprocess.run([os.path.join(bin_dir, "cocopp"), "run", "-q",
+                                     os.path.join(local, "case.yaml")],
+                                    stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+            check(result.returncode == 0, "the tube on one machine over pipes")
+
+            remote = os.path.join(scratch, "remote")
+            write_case(remote, source, 100, across)
+            result, _ = in_host_a(bin_dir, remote, 120)
+            check(result.returncode == 0, f"the tube across two hosts over TCP\n{result.stdout}")
+            same_results(os.path.join(local, "results/case.h5"),
+                         os.path.join(remote, "results/case.h5"), "across two hosts")
+
+            unreachable = os.path.join(scratch, "unreachable")
+            write_case(unreachable, source, 10,
+                       f"    transport: tcp\n    host: 127.0.0.1\n    startup_timeout: 5\n"
+                       f"    launcher: [ip, netns, exec, {HOST_B}]\n")
+            result, took = in_host_a(bin_dir, unreachable, 60)
+            check(result.returncode != 0 and "structure" in result.stdout and took < 30,
+                  f"a solver that cannot reach the coupler's address: an error in {took:.1f} s\n"
+                  + result.stdout[-600:])
+
+            cut = os.path.join(scratch, "cut")
+            write_case(cut, source, 10**7, across)
+            text = open(os.path.join(cut, "case.yaml")).read()
+            open(os.path.join(cut, "case.yaml"), "w").write(
+                text.replace("results_write_interval: 1.0", "results_write_interval: 0.2"))
+            run = subprocess.Popen(["ip", "netns", "exec", HOST_A,
+                                    os.path.join(bin_dir, "cocopp"), "run",
+                                    os.path.join(cut, "case.yaml")],
+                                   stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+            time.sleep(3)
+            cut_at = time.monotonic()
+            ip("-n", HOST_A, "link", "delete", f"{TAG}va")
+            try:
+                output, _ = run.communicate(timeout=90)
+            except subprocess.TimeoutExpired:
+                run.kill()
+                sys.exit("FAILED: the run did not stop within 90 s of the cut link")
+            took = time.monotonic() - cut_at
+            check(run.returncode not in (0, 3) and "structure" in output
+                  and ("lost" in output or "closed" in output or "timed out" in output),
+                  f"the link cut: the run stopped in {took:.1f} s naming the solver\n"
+                  + output[-800:])
+            with h5py.File(os.path.join(cut, "results/case.h5"), "r") as results:
+                steps = len(results["steps/iterations"])
+                check(steps > 0, f"the link cut: the {steps} steps written before it are readable")
+            time.sleep(1)
+            check(not solvers_left(cut), "the link cut: no solver process left")
+
+            if "--openfoam" in sys.argv:
+                wedge_across(bin_dir, source, scratch, across)
+    finally:
+        remove_hosts()
+
+
+if __name__ == "__main__":
+    main()
