@@ -4,7 +4,13 @@
 // and, as the floor, a bare ping-pong of the same bytes through two anonymous pipes between the
 // same two kinds of process (blocking reads and writes, no framing), in the same run.
 //
-//   bench_protocol_roundtrip [doubles=300] [round_trips=2000]
+//   bench_protocol_roundtrip [doubles=300] [round_trips=2000] [HOST SOLVER_NETNS]
+//
+// With HOST and SOLVER_NETNS (as root, bench/two_hosts.py) only the TCP transport is measured,
+// the coupler listening on HOST and the echo solver in the network namespace SOLVER_NETNS (a
+// second "host" behind a veth pair).
+#include <fcntl.h>
+#include <sched.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -100,17 +106,33 @@ Statistics bare_ping_pong(std::size_t doubles, int round_trips) {
   return summarize(std::move(times_us));
 }
 
+/// Where the TCP transport's two ends are: the coupler's address, the solver's namespace.
+struct TcpPlacement {
+  std::string host = "127.0.0.1";
+  std::string solver_netns;  ///< empty: this one
+};
+
+/// The forked solver moves into `netns` (/var/run/netns/<netns>, ip netns's).
+void enter_network_namespace(const std::string& netns) {
+  if (netns.empty()) return;
+  const int fd = ::open(("/var/run/netns/" + netns).c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0 || ::setns(fd, CLONE_NEWNET) != 0) std::abort();
+  ::close(fd);
+}
+
 Statistics measure(protocol::TransportKind kind, std::size_t doubles, int round_trips,
-                   std::chrono::microseconds busy_wait) {
+                   std::chrono::microseconds busy_wait, const TcpPlacement& placement) {
   char pattern[] = "/tmp/cocopp_bench_XXXXXX";
   const std::filesystem::path directory = ::mkdtemp(pattern);
   protocol::CouplerChannelOptions options;
   options.kind = kind;
   options.directory = directory;
   options.busy_wait = busy_wait;
+  options.host = placement.host;
   auto channel = protocol::create_coupler_channel(options);
   const pid_t child = ::fork();
   if (child == 0) {
+    if (kind == protocol::TransportKind::kTcp) enter_network_namespace(placement.solver_netns);
     for (const auto& [variable, value] : protocol::solver_environment(channel->address()))
       ::setenv(variable.c_str(), value.c_str(), 1);
     EchoSolver solver(doubles / 3);
@@ -148,13 +170,15 @@ Statistics measure(protocol::TransportKind kind, std::size_t doubles, int round_
 int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "--help") {
     std::puts(
-        "usage: bench_protocol_roundtrip [doubles=300] [round_trips=2000]\n"
+        "usage: bench_protocol_roundtrip [doubles=300] [round_trips=2000] [HOST SOLVER_NETNS]\n"
         "Round-trip latency of one SOLVE request with its DATA reply, over the pipe, the TCP "
         "(loopback) and the file transport, against a forked echo solver.");
     return 0;
   }
   const std::size_t doubles = argc > 1 ? std::stoul(argv[1]) : 300;
   const int round_trips = argc > 2 ? std::stoi(argv[2]) : 2000;
+  TcpPlacement placement;
+  if (argc > 4) placement = {argv[3], argv[4]};
   std::printf("SOLVE of %zu doubles + DATA reply, %d round trips each\n", doubles, round_trips);
   const Statistics floor = bare_ping_pong(doubles, round_trips);
   std::printf(
@@ -170,13 +194,14 @@ int main(int argc, char** argv) {
   const Mode modes[] = {
       {protocol::TransportKind::kPipe, std::chrono::microseconds(0), "pipe, polling"},
       {protocol::TransportKind::kPipe, std::chrono::microseconds(1000), "pipe, busy wait 1 ms"},
-      {protocol::TransportKind::kTcp, std::chrono::microseconds(0), "tcp loopback, polling"},
-      {protocol::TransportKind::kTcp, std::chrono::microseconds(1000), "tcp loopback, busy 1 ms"},
+      {protocol::TransportKind::kTcp, std::chrono::microseconds(0), "tcp, polling"},
+      {protocol::TransportKind::kTcp, std::chrono::microseconds(1000), "tcp, busy wait 1 ms"},
       {protocol::TransportKind::kFile, std::chrono::microseconds(0), "file"}};
   for (const Mode& mode : modes) {
+    if (!placement.solver_netns.empty() && mode.kind != protocol::TransportKind::kTcp) continue;
     const int count =
         mode.kind == protocol::TransportKind::kFile ? std::max(1, round_trips / 10) : round_trips;
-    const Statistics s = measure(mode.kind, doubles, count, mode.busy_wait);
+    const Statistics s = measure(mode.kind, doubles, count, mode.busy_wait, placement);
     std::printf(
         "%-20s: median %8.1f us   mean %8.1f us   p99 %8.1f us   (%d round trips; median %.2f "
         "x bare)\n",

@@ -2,7 +2,7 @@
 
 The Python twin of the C++ SDK (solvers/sdk/solver_sdk.hpp, docs/protocol.md): derive
 from Solver, return the interface from initialize(), map input to output in solve(), and call
-serve(). The SDK speaks the protocol (pipe and file transport), checks what the solver returns
+serve(). The SDK speaks the protocol (pipe, file and TCP transport), checks what the solver returns
 and turns exceptions into messages the coupler shows. Interface data are NumPy arrays.
 
     import sys
