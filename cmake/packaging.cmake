@@ -3,9 +3,10 @@
 #   bin/                     cocopp, the built-in solvers, cocoppPimpleFoam (where built)
 #   libexec/cocopp/ccx       ccx with cocopp's patches (where scripts/install-calculix.sh built it)
 #   include/cocopp/          the SDK's headers, under the same paths as in the source tree
-#   lib/                     libcocopp_sdk.a, libcocopp_protocol.a, cmake/cocopp/, pkgconfig/
+#   lib/<multiarch>/         libcocopp_sdk.a, libcocopp_protocol.a, cmake/cocopp/, pkgconfig/
 #   lib/python3/dist-packages/   the Python solver SDK (cocopp_sdk.py), the package cocopp/
 #   share/cocopp/            the scripts cocopp calls and the plot scripts; examples/
+#   share/doc/cocopp/        the docs (docs/), which cocopp's help points to
 #
 # Relocatable: cocopp finds its solvers, its ccx and its scripts relative to its own
 # executable, cocoppConfig.cmake and cocopp-sdk.pc find the rest relative to themselves, so an
@@ -33,6 +34,7 @@ string(REGEX REPLACE "/$" "" pc_to_prefix "${pc_to_prefix}")
 configure_file(${CMAKE_CURRENT_LIST_DIR}/cocopp-sdk.pc.in ${CMAKE_BINARY_DIR}/cocopp-sdk.pc @ONLY)
 install(FILES ${CMAKE_BINARY_DIR}/cocopp-sdk.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
 
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR})
 # The plot scripts a user runs on a results file, next to the one cocopp calls itself.
 install(PROGRAMS ${PROJECT_SOURCE_DIR}/scripts/plot_results.py DESTINATION share/cocopp)
 # Examples to copy and run (they write under their own results/): the tube cases on the

@@ -18,11 +18,13 @@ int main(int argc, char** argv) {
   if (argc >= 3 && std::string(argv[1]) == "plot" && argv[2][0] != '-' &&
       std::filesystem::is_regular_file(argv[2]))
     return cocopp::plot_file(argv[2], std::vector<std::string>(argv + 3, argv + argc));
+  using cocopp::documentation;
   CLI::App app{
       "cocopp: partitioned fluid-structure interaction.\n"
       "A coupler process drives two solver executables (the first maps interface displacement "
       "to loads, the second loads to displacement) and iterates every time step until they "
-      "agree. Everything is set in one case file (YAML or JSON); see docs/case-file.md."};
+      "agree. Everything is set in one case file (YAML or JSON); see " +
+      documentation("case-file.md") + "."};
   app.require_subcommand(1);
   app.set_version_flag("--version", "cocopp " COCOPP_VERSION);
 
@@ -31,7 +33,8 @@ int main(int argc, char** argv) {
   auto* run = app.add_subcommand(
       "run",
       "Run a case: start the solvers, march in time with the coupled solver, write "
-      "<results_directory>/<name>.h5 (HDF5, docs/results.md) and <name>.summary.json. Prints "
+      "<results_directory>/<name>.h5 (HDF5, " + documentation("results.md") +
+          ") and <name>.summary.json. Prints "
       "one progress line per time step (a * marks a step accepted at the iteration limit, a ~ one "
       "accepted there with the residual at the solvers' noise) and a timing summary. Exit code 0: "
       "completed; 3: stalled (every step computed, some accepted at the iteration limit above "
@@ -49,7 +52,7 @@ int main(int argc, char** argv) {
                 "continue a run from its saved state (<results_directory>/<name>.state.h5, "
                 "written at the end of a run and every settings.state_interval steps) up to the "
                 "case's end: the solvers restart from what they saved with it, the results file "
-                "is continued after the saved step (docs/results.md)");
+                "is continued after the saved step (" + documentation("results.md") + ")");
   run->add_flag("--fresh-coupling", options.fresh_coupling,
                 "with --restart: the coupled solver's own memory (secant columns, Aitken's "
                 "factor, scaling) starts afresh and only the predictor's history is taken, so "
@@ -75,7 +78,8 @@ int main(int argc, char** argv) {
       "against the reference. Benchmark file (YAML/JSON): base_case: <case file>; "
       "output_directory: <dir> (default results/bench); reference: {results: <file.h5>} or "
       "{tolerance: 1e-10}; settings: {...} (merged into every run); variants: [{name: ..., "
-      "coupled_solver: {...}, settings: {...}}, ...]. See docs/bench.md. Exit code 0: all runs "
+      "coupled_solver: {...}, settings: {...}}, ...]. See " + documentation("bench.md") +
+          ". Exit code 0: all runs "
       "made (diverging variants included); 1: stopped; 2: invalid file.");
   bench->add_option("bench", bench_file, "benchmark file (.yaml, .yml or .json)")
       ->required()
@@ -93,7 +97,8 @@ int main(int argc, char** argv) {
       "Write the interface of every time step of a results file for ParaView: one VTU file "
       "per model part and step (the points at their initial coordinates, the variables of x and "
       "y as point arrays) in <name>_vtk/, and the time series <name>.pvd next to them, as a run "
-      "with settings.vtk_output: true writes them while it goes (docs/results.md). Exit code 0, "
+      "with settings.vtk_output: true writes them while it goes (" +
+          documentation("results.md") + "). Exit code 0, "
       "or 1 if the file cannot be read or the files cannot be written.");
   export_vtk->add_option("results", results_file, "results file (<name>.h5)")
       ->required()

@@ -25,10 +25,22 @@ std::string script_for(const fs::path& file) {
 
 }  // namespace
 
-fs::path shared_script(const std::string& name) {
+namespace {
+
+/// <prefix>: above the running executable's bin/.
+fs::path installation_prefix() {
   std::error_code error;
-  const fs::path executable = fs::read_symlink("/proc/self/exe", error);
-  return executable.parent_path().parent_path() / "share" / "cocopp" / name;
+  return fs::read_symlink("/proc/self/exe", error).parent_path().parent_path();
+}
+
+}  // namespace
+
+fs::path shared_script(const std::string& name) {
+  return installation_prefix() / "share" / "cocopp" / name;
+}
+
+std::string documentation(const std::string& page) {
+  return (installation_prefix() / "share" / "doc" / "cocopp" / page).string();
 }
 
 int plot_file(const fs::path& file, const std::vector<std::string>& arguments) {

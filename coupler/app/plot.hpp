@@ -9,6 +9,9 @@ namespace cocopp {
 /// <prefix>/share/cocopp/<name> beside the running executable (<prefix>/bin/cocopp), in the
 /// build tree and in an install alike: an installed cocopp never reaches into the sources.
 std::filesystem::path shared_script(const std::string& name);
+/// <prefix>/share/doc/cocopp/<page>, the same way: the docs the help points to (in the build
+/// tree a link to the sources' docs/).
+std::string documentation(const std::string& page);
 
 /// Draws `file` with the script for its kind, run by Debian's python3 (where matplotlib and
 /// h5py install) with `arguments` after the file: a results file (.h5) with plot_results.py,

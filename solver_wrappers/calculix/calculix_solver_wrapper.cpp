@@ -21,9 +21,9 @@ namespace {
 using calculix::PerIterationCcx;
 using calculix::PersistentCcx;
 
-/// ccx with cocopp's patches: in an install, <prefix>/libexec/cocopp/ccx next to the running
-/// cocopp's bin/ (so that the install can move); in the build tree, where
-/// scripts/install-calculix.sh built it; else the Debian package's ccx on PATH.
+/// ccx with cocopp's patches: <prefix>/libexec/cocopp/ccx next to the running cocopp's bin/ (so
+/// that the install can move; in the build tree a link to where scripts/install-calculix.sh
+/// built it); else the Debian package's ccx on PATH.
 std::string default_executable() {
   std::error_code error;
   const std::filesystem::path bin = builtin_solver_directory();
@@ -31,9 +31,6 @@ std::string default_executable() {
     const std::filesystem::path installed = bin.parent_path() / COCOPP_INSTALLED_CCX;
     if (std::filesystem::is_regular_file(installed, error)) return installed.string();
   }
-#ifdef COCOPP_PATCHED_CCX
-  if (std::filesystem::is_regular_file(COCOPP_PATCHED_CCX, error)) return COCOPP_PATCHED_CCX;
-#endif
   return "ccx";
 }
 

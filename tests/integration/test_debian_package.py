@@ -19,7 +19,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from test_install import check, run, user_environment  # noqa: E402
+from test_install import check, library_directory, run, user_environment  # noqa: E402
 
 
 def installed(package):
@@ -54,6 +54,22 @@ def main():
         run(["dpkg-deb", "-x", package, root])
         prefix = os.path.join(root, "usr")
         env = user_environment(prefix)
+        check(os.path.isfile(os.path.join(prefix, library_directory(), "libcocopp_sdk.a")),
+              f"the libraries under usr/{library_directory()} (Debian's multiarch directory)")
+        # No path of the build machine in what the package runs (the sources' and the build's
+        # directory: a fallback into build-deps/ was one).
+        build = os.path.abspath(args.build)
+        source = run(["sed", "-n", "s/^CMAKE_HOME_DIRECTORY:INTERNAL=//p",
+                      os.path.join(build, "CMakeCache.txt")]).strip()
+        for binary in glob.glob(os.path.join(prefix, "bin", "*")) + \
+                glob.glob(os.path.join(prefix, "libexec", "cocopp", "*")):
+            data = open(binary, "rb").read()
+            check(build.encode() not in data and (source + "/").encode() not in data,
+                  f"no build machine's path in {os.path.relpath(binary, root)}")
+        helped = run([os.path.join(prefix, "bin", "cocopp"), "--help"], env=env)
+        check(f"{prefix}/share/doc/cocopp/case-file.md" in helped
+              and os.path.isfile(os.path.join(prefix, "share/doc/cocopp/case-file.md")),
+              "the help points to the packaged docs")
         example = os.path.join(scratch, "flow_structure")
         shutil.copytree(os.path.join(prefix, "share/cocopp/examples/tube/flow_structure"), example)
         run([os.path.join(prefix, "bin", "cocopp"), "run", "case.yaml"], cwd=example, env=env)

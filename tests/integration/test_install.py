@@ -35,13 +35,19 @@ def check(condition, message):
     print(f"ok: {message}")
 
 
+def library_directory():
+    """lib/<multiarch>, where the install puts libraries on Debian (lib/x86_64-linux-gnu)."""
+    multiarch = subprocess.run(["gcc", "-print-multiarch"], stdout=subprocess.PIPE, text=True)
+    return f"lib/{multiarch.stdout.strip()}" if multiarch.stdout.strip() else "lib"
+
+
 def user_environment(prefix):
     """A user's shell: no test variables, Debian's python3 first, the moved install's Python SDK
     on PYTHONPATH (a /usr install needs none)."""
     env = {key: value for key, value in os.environ.items() if not key.startswith("COCOPP_")}
     env["PATH"] = f"{prefix}/bin:/usr/bin:{env.get('PATH', '')}"
     env["PYTHONPATH"] = f"{prefix}/lib/python3/dist-packages"
-    env["PKG_CONFIG_PATH"] = f"{prefix}/lib/pkgconfig"
+    env["PKG_CONFIG_PATH"] = f"{prefix}/{library_directory()}/pkgconfig"
     return env
 
 
@@ -79,8 +85,10 @@ def main():
         # What the install holds, and that the moved cocopp finds its parts in it.
         for part in ["bin/cocopp-tube-flow", "bin/cocopp-tube-structure",
                      "bin/cocopp-tube-ringmodel", "share/cocopp/plot_bench.py",
-                     "share/cocopp/plot_results.py", "lib/libcocopp_sdk.a",
-                     "lib/cmake/cocopp/cocoppConfig.cmake", "lib/pkgconfig/cocopp-sdk.pc",
+                     "share/cocopp/plot_results.py", f"{library_directory()}/libcocopp_sdk.a",
+                     f"{library_directory()}/cmake/cocopp/cocoppConfig.cmake",
+                     f"{library_directory()}/pkgconfig/cocopp-sdk.pc",
+                     "share/doc/cocopp/case-file.md", "share/doc/cocopp/images/stability.png",
                      "lib/python3/dist-packages/cocopp_sdk.py",
                      "lib/python3/dist-packages/cocopp/results.py",
                      "lib/python3/dist-packages/cocopp/plot/bench.py",
