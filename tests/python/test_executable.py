@@ -97,6 +97,26 @@ class PackageOnPythonPath(unittest.TestCase):
             self.assertEqual(imported.stdout.strip(), str(SOURCE / "python/cocopp/case.py"),
                              imported.stderr)
 
+    def test_a_removed_checkout_falls_back_to_the_one_built_before(self):
+        with tempfile.TemporaryDirectory() as home:
+            env = {"PATH": "/usr/bin:/bin", "HOME": home}
+            with tempfile.TemporaryDirectory() as clone:  # a CI clone, built last, then removed
+                os.makedirs(os.path.join(clone, "python"))
+                for checkout in (SOURCE, clone, clone):
+                    subprocess.run(["bash", "-c", f"source {SOURCE}/scripts/lib/python-path.sh "
+                                    f"&& put_package_on_python_path {checkout}"],
+                                   env=env, capture_output=True, text=True, check=True)
+                site = subprocess.run(["/usr/bin/python3", "-m", "site", "--user-site"],
+                                      env=env, capture_output=True, text=True,
+                                      check=True).stdout.strip()
+                with open(os.path.join(site, "cocopp-checkout.pth")) as pth:
+                    self.assertEqual(pth.read().split(), [os.path.join(clone, "python"),
+                                                          str(SOURCE / "python")])
+            imported = subprocess.run(["/usr/bin/python3", "-c",
+                                       "import cocopp.case; print(cocopp.case.__file__)"],
+                                      cwd=home, env=env, capture_output=True, text=True)
+            self.assertEqual(imported.stdout.strip(), str(SOURCE / "python/cocopp/case.py"),
+                             imported.stderr)
 
 if __name__ == "__main__":
     unittest.main()
