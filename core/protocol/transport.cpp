@@ -1,8 +1,15 @@
 #include "core/protocol/transport.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <map>
 #include <sstream>
 
 #include "core/protocol/file_transport.hpp"
@@ -37,8 +44,71 @@ std::vector<std::pair<std::string, std::string>> solver_environment(const Channe
   return variables;
 }
 
+bool channel_in_environment() {
+  const auto given = [](const char* name) {
+    const char* value = std::getenv(name);
+    return value != nullptr && *value != '\0';
+  };
+  return given(kChannelFileVariable) || (given(kTransportVariable) && given(kChannelVariable));
+}
+
+namespace {
+
+/// The VARIABLE=value lines of a channel file.
+std::map<std::string, std::string> read_channel_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in)
+    throw TransportError(std::string(kChannelFileVariable) + "=" + path +
+                         ": cannot read the file (is the coupler running and waiting for this "
+                         "solver? it writes the file when it starts)");
+  std::map<std::string, std::string> values;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    const auto equals = line.find('=');
+    if (equals == std::string::npos)
+      throw TransportError(path + ": '" + line + "' is not VARIABLE=value");
+    values[line.substr(0, equals)] = line.substr(equals + 1);
+  }
+  return values;
+}
+
+}  // namespace
+
+void write_channel_file(const std::filesystem::path& file, const ChannelAddress& address,
+                        const std::string& solver_name) {
+  const std::filesystem::path partial = file.string() + ".partial";
+  std::error_code ignored;
+  std::filesystem::remove(partial, ignored);
+  // Created readable by the user only, before the secret goes in.
+  const int fd = ::open(partial.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+  if (fd < 0)
+    throw TransportError("cannot write the channel file " + partial.string() + ": " +
+                         std::strerror(errno));
+  std::string text = "# cocopp: the channel of solver '" + solver_name +
+                     "'. Start the solver with " + kChannelFileVariable + "=" + file.string() +
+                     "\n# in its environment (docs/clusters.md); removed once it has connected.\n";
+  for (const auto& [variable, value] : solver_environment(address))
+    text += variable + "=" + value + "\n";
+  const bool written = ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
+  ::close(fd);
+  if (!written || ::rename(partial.c_str(), file.c_str()) != 0) {
+    std::filesystem::remove(partial, ignored);
+    throw TransportError("cannot write the channel file " + file.string());
+  }
+}
+
 ChannelAddress channel_from_environment() {
-  const auto variable = [](const char* name) -> std::string {
+  const char* file = std::getenv(kChannelFileVariable);
+  const bool in_file = file != nullptr && *file != '\0';
+  std::map<std::string, std::string> from_file;
+  if (in_file) from_file = read_channel_file(file);
+  const auto variable = [&](const char* name) -> std::string {
+    if (in_file) {
+      const auto found = from_file.find(name);
+      if (found == from_file.end() || found->second.empty())
+        throw TransportError(std::string(file) + " has no " + name);
+      return found->second;
+    }
     const char* value = std::getenv(name);
     if (value == nullptr || *value == '\0') throw TransportError(std::string(name) + " is not set");
     return value;

@@ -36,6 +36,9 @@ constexpr const char* kTransportVariable = "COCOPP_TRANSPORT";  ///< "pipe", "fi
 constexpr const char* kChannelVariable = "COCOPP_CHANNEL";
 /// tcp: the run's secret, which the solver sends first to be let in (never on a command line)
 constexpr const char* kTokenVariable = "COCOPP_TOKEN";
+/// A solver the user starts (`started_by: user`): the file holding the three variables above,
+/// which the coupler writes (mode 0600) into the solver's working directory.
+constexpr const char* kChannelFileVariable = "COCOPP_CHANNEL_FILE";
 /// Seconds the solver reads its request pipe without sleeping ("0.001"; unset: 0).
 constexpr const char* kBusyWaitVariable = "COCOPP_BUSY_WAIT";
 
@@ -73,9 +76,16 @@ struct ChannelAddress {
 /// The variables that tell a solver `address`: COCOPP_TRANSPORT, COCOPP_CHANNEL (and
 /// COCOPP_TOKEN for tcp).
 std::vector<std::pair<std::string, std::string>> solver_environment(const ChannelAddress& address);
-/// Solver side: the address in this process's environment; throws TransportError naming the
-/// variable that is missing or wrong.
+/// Solver side: the address in this process's environment, or in the file COCOPP_CHANNEL_FILE
+/// names (lines VARIABLE=value, # comments); throws TransportError naming the variable or the
+/// file that is missing or wrong.
 ChannelAddress channel_from_environment();
+/// True if this process was given a channel (the variables, or the file).
+bool channel_in_environment();
+/// Coupler side, for a solver the user starts: writes solver_environment(address) to `file`
+/// (readable by the user only, written whole or not at all).
+void write_channel_file(const std::filesystem::path& file, const ChannelAddress& address,
+                        const std::string& solver_name);
 
 class Transport {
  public:

@@ -63,7 +63,7 @@ void ProcessSolverWrapper::ensure_running() const {
 
 protocol::AliveCheck ProcessSolverWrapper::alive_check() {
   return [this] {
-    if (!child_->running()) throw ChildExited();
+    if (child_ && !child_->running()) throw ChildExited();
   };
 }
 
@@ -79,7 +79,7 @@ auto ProcessSolverWrapper::guarded(const std::string& request_name, double timeo
         name_, fmt::format("solver '{}' rejected the input {}: {}\n(log: {})", name_,
                            at_position(request_name), rejection.text, log_file_.string()));
   } catch (const ReportedError& error) {
-    child_->wait_for_exit(kExitAfterErrorSeconds);
+    if (child_) child_->wait_for_exit(kExitAfterErrorSeconds);
     fail(fmt::format("solver '{}' reported an error: {}\n(during {} {}; log: {})", name_,
                      error.text, request_name, at_position(request_name), log_file_.string()));
   } catch (const ChildExited&) {
@@ -88,10 +88,21 @@ auto ProcessSolverWrapper::guarded(const std::string& request_name, double timeo
     const std::string what =
         request_name == "startup" ? "did not connect" : "did not answer " + request_name;
     const std::string where = position(request_name);
+    if (started_by_user_)
+      fail(fmt::format("solver '{}' (started by the user) {} within {} ({}){}", name_, what,
+                       protocol::seconds_text(timeout_seconds),
+                       where.empty() ? "before the first step" : where,
+                       request_name == "startup"
+                           ? fmt::format(": start it with {}={} in its environment",
+                                         protocol::kChannelFileVariable, channel_file().string())
+                           : ""));
     fail_with_log(fmt::format("solver '{}' {} within {} ({}); its log {} ends with:", name_, what,
                               protocol::seconds_text(timeout_seconds),
                               where.empty() ? "before the first step" : where, log_file_.string()));
   } catch (const protocol::PeerClosed&) {
+    if (started_by_user_)
+      fail(fmt::format("solver '{}' (started by the user) closed the connection during {} {}",
+                       name_, request_name, at_position(request_name)));
     // A crashing solver closes the pipe before the alive check sees that it has died.
     child_->wait_for_exit(kExitAfterErrorSeconds);
     if (!child_->running()) fail_child_exited(request_name);
@@ -183,7 +194,18 @@ ProcessSolverWrapper::ProcessSolverWrapper(const Settings& settings, const RunSe
   const std::filesystem::path directory = settings.required<std::string>("working_directory");
   working_directory_ = std::filesystem::absolute(run.case_directory / directory).lexically_normal();
   working_directory_where_ = settings.where("working_directory");
-  read_command(settings, default_command);
+  // A solver the user starts (a batch script's srun, another terminal): no command, and the
+  // coupler waits for it on TCP (docs/clusters.md).
+  started_by_user_ = settings.get_choice("started_by", "coupler", {"coupler", "user"}) == "user";
+  if (started_by_user_) {
+    for (const char* key : {"command", "input_file", "launcher"})
+      if (settings.has(key))
+        settings.fail(key,
+                      "the coupler starts nothing for a solver with started_by: user: "
+                      "remove it");
+  } else {
+    read_command(settings, default_command);
+  }
   if (default_command) default_environment_ = default_command->environment;
   // The built-in check reads the default input file format: not with a command of the user's.
   if (default_command && !settings.has("command"))
@@ -191,6 +213,10 @@ ProcessSolverWrapper::ProcessSolverWrapper(const Settings& settings, const RunSe
   transport_kind_ = protocol::parse_transport_kind(
       settings.get_choice("transport", "pipe", {"pipe", "file", "tcp"}));
   read_tcp_keys(settings);
+  if (started_by_user_ && transport_kind_ != protocol::TransportKind::kTcp)
+    settings.fail("started_by",
+                  "a solver the user starts connects over TCP: add transport: tcp "
+                  "(and host: an address of this machine it reaches)");
   timeout_ = settings.get_in_range("timeout", 600.0, Range::timeout());  // seconds
   startup_timeout_ = settings.get_in_range("startup_timeout", 60.0, Range::timeout());
   // Reading the reply pipe without sleeping saves a process wake-up per message on fast solvers
@@ -268,6 +294,9 @@ void ProcessSolverWrapper::set_default_name(const std::string& name) {
 }
 
 std::string ProcessSolverWrapper::describe() const {
+  if (started_by_user_)
+    return fmt::format("{}: started by the user (in {}; {} transport)", name_,
+                       working_directory_.string(), protocol::transport_name(transport_kind_));
   return fmt::format("{}: {}{} (in {}; log {}; {} transport{})", name_,
                      launcher_.empty() ? "" : join(launcher_, " ") + " ", join(command_, " "),
                      working_directory_.string(), log_file_.string(),
@@ -276,6 +305,7 @@ std::string ProcessSolverWrapper::describe() const {
 }
 
 std::string ProcessSolverWrapper::started() const {
+  if (started_by_user_) return name_ + " (started by the user)";
   return child_ ? fmt::format("{} (pid {})", name_, child_->pid()) : name_;
 }
 
@@ -287,6 +317,7 @@ void ProcessSolverWrapper::check() const {
   if (const auto why = creation_problem(log_file_.parent_path()); !why.empty())
     throw CaseError(log_file_where_ + ": " + solver + "the log file's folder " +
                     log_file_.parent_path().string() + " " + why);
+  if (started_by_user_) return;  // no command: the user starts the solver
   try {
     find_executable(command_[0], working_directory_);
   } catch (const std::runtime_error& e) {
@@ -301,7 +332,7 @@ void ProcessSolverWrapper::check() const {
 // The solver itself reads the file, in its working directory as a run starts it: the coupler
 // never links a solver's code, and the message is the one the run would end with.
 void ProcessSolverWrapper::check_solver_input() const {
-  if (check_arguments_.empty() || input_file_.empty()) return;
+  if (started_by_user_ || check_arguments_.empty() || input_file_.empty()) return;
   constexpr double kCheckTimeout = 60.0;  // s; reading an input file takes milliseconds
   ChildOptions options;
   options.command = {command_[0]};
@@ -369,6 +400,11 @@ void ProcessSolverWrapper::launch() {
     channel.host = tcp_host_;
     channel.port = tcp_port_;
     channel_ = protocol::create_coupler_channel(channel);
+    if (started_by_user_) {
+      wait_for_user();
+      state_ = State::kRunning;
+      return;
+    }
     ChildOptions options;
     options.command = launcher_;
     options.command.insert(options.command.end(), command_.begin(), command_.end());
@@ -392,6 +428,19 @@ void ProcessSolverWrapper::launch() {
   state_ = State::kRunning;
 }
 
+std::filesystem::path ProcessSolverWrapper::channel_file() const {
+  return working_directory_ / ("cocopp_channel_" + name_ + ".env");
+}
+
+void ProcessSolverWrapper::wait_for_user() {
+  protocol::write_channel_file(channel_file(), channel_->address(), name_);
+  fmt::print(stderr,
+             "solver '{}': waiting up to {} for it to connect to {}: start it with {}={} in "
+             "its environment\n",
+             name_, protocol::seconds_text(startup_timeout_), channel_->address().channel,
+             protocol::kChannelFileVariable, channel_file().string());
+}
+
 void ProcessSolverWrapper::report_refused_peers() const {
   if (const auto* tcp = dynamic_cast<const protocol::TcpTransport*>(channel_.get()))
     for (const auto& peer : tcp->refused())
@@ -402,6 +451,7 @@ void ProcessSolverWrapper::wait_for_hello() {
   // One deadline for both stages of the startup.
   const auto start = std::chrono::steady_clock::now();
   guarded("startup", startup_timeout_, [&] { channel_->connect(startup_timeout_, alive_check()); });
+  if (started_by_user_) remove_channel_file();  // the secret is used: nobody else gets in
   report_refused_peers();
   const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
   const auto hello =
@@ -539,7 +589,7 @@ void ProcessSolverWrapper::finalize() {
   }
   const Frame request = protocol::encode_empty(MessageType::kStop);
   call("stop", &request, MessageType::kOk, std::min(timeout_, kStopTimeoutSeconds), decode_ok);
-  child_->wait_for_exit(kExitAfterStopSeconds);
+  if (child_) child_->wait_for_exit(kExitAfterStopSeconds);
   release();
 }
 
@@ -571,6 +621,7 @@ void ProcessSolverWrapper::fail_child_exited(const std::string& request_name) {
 void ProcessSolverWrapper::release() noexcept {
   state_ = State::kStopped;
   if (child_) child_->stop(kStopGraceSeconds);
+  if (started_by_user_) remove_channel_file();
   channel_.reset();  // closes the channel and removes its FIFOs or message files
 }
 
@@ -584,6 +635,11 @@ std::string ProcessSolverWrapper::position(const std::string& request_name) cons
 std::string ProcessSolverWrapper::at_position(const std::string& request_name) const {
   const std::string where = position(request_name);
   return where.empty() ? "before the first step" : "at " + where;
+}
+
+void ProcessSolverWrapper::remove_channel_file() const noexcept {
+  std::error_code ignored;
+  std::filesystem::remove(channel_file(), ignored);
 }
 
 std::string ProcessSolverWrapper::log_tail() const {

@@ -108,6 +108,11 @@ class ProcessSolverWrapper : public SolverWrapper {
   void read_tcp_keys(const Settings& settings);
   /// The peers the TCP channel refused while it waited for the solver, as warnings.
   void report_refused_peers() const;
+  /// started_by: user: where the channel's address and token wait for the solver, mode 0600.
+  std::filesystem::path channel_file() const;
+  /// started_by: user: write the channel file and say where the coupler waits.
+  void wait_for_user();
+  void remove_channel_file() const noexcept;
   void launch();
   void wait_for_hello();
   void ensure_running() const;
@@ -162,6 +167,7 @@ class ProcessSolverWrapper : public SolverWrapper {
   std::string tcp_host_;               ///< transport: tcp: the address the coupler listens on
   int tcp_port_ = 0;                   ///< and its port (0: any free one)
   std::vector<std::string> launcher_;  ///< put before the command: srun, mpirun, ssh, ...
+  bool started_by_user_ = false;       ///< no child: the user starts the solver
   double timeout_ = 600.0;
   double startup_timeout_ = 60.0;
   std::chrono::microseconds busy_wait_{1000};  ///< of the pipe transport's receive

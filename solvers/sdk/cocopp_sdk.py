@@ -250,8 +250,16 @@ def serve(solver, argv=None):
         if type(solver).__doc__:
             print("\n" + type(solver).__doc__.strip())
         return 0
-    transport = os.environ.get("COCOPP_TRANSPORT")
-    channel_directory = os.environ.get("COCOPP_CHANNEL")
+    variables = dict(os.environ)
+    channel_file = os.environ.get("COCOPP_CHANNEL_FILE")
+    if channel_file:  # a solver the user starts: the coupler wrote its channel there
+        try:
+            variables = _read_channel_file(channel_file)
+        except (OSError, ProtocolError) as error:
+            print(f"{program}: cannot connect to the cocopp coupler: {error}", file=sys.stderr)
+            return 1
+    transport = variables.get("COCOPP_TRANSPORT")
+    channel_directory = variables.get("COCOPP_CHANNEL")
     if not transport or not channel_directory:
         print(f"{program}: this program is a cocopp solver; run it through `cocopp run "
               "case.yaml` (COCOPP_TRANSPORT and COCOPP_CHANNEL are not set)", file=sys.stderr)
@@ -263,7 +271,7 @@ def serve(solver, argv=None):
         elif transport == "file":
             channel = _FileChannel(channel_directory, coupler_pid)
         elif transport == "tcp":
-            channel = _TcpChannel(channel_directory, os.environ.get("COCOPP_TOKEN", ""))
+            channel = _TcpChannel(channel_directory, variables.get("COCOPP_TOKEN", ""))
         else:
             raise ProtocolError(f"unknown transport '{transport}' (pipe, file or tcp)")
     except (OSError, ProtocolError, _ChannelLost) as error:
@@ -556,6 +564,21 @@ class _PipeChannel:
                 data = data[os.write(self.replies, data):]
         except BrokenPipeError as error:
             raise _ChannelLost("the coupler closed the reply pipe") from error
+
+
+def _read_channel_file(path):
+    """The VARIABLE=value lines of the file COCOPP_CHANNEL_FILE names (# comments)."""
+    variables = {}
+    with open(path) as lines:
+        for line in lines:
+            line = line.rstrip("\n")
+            if not line or line.startswith("#"):
+                continue
+            name, equals, value = line.partition("=")
+            if not equals:
+                raise ProtocolError(f"{path}: '{line}' is not VARIABLE=value")
+            variables[name] = value
+    return variables
 
 
 class _TcpChannel:

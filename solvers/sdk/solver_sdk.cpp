@@ -82,7 +82,8 @@ class Server {
   // With the file transport there is no end-of-file to notice; a new parent means the
   // coupler has gone.
   void check_coupler() const {
-    if (::getppid() != coupler_pid_) throw protocol::PeerClosed("the coupler has exited");
+    if (coupler_pid_ != 0 && ::getppid() != coupler_pid_)
+      throw protocol::PeerClosed("the coupler has exited");
   }
 
   /// Handle one request; false after STOP.
@@ -291,21 +292,24 @@ int serve(Solver& solver, int argc, char** argv) {
     print_help(program);
     return 0;
   }
-  const char* transport = std::getenv(protocol::kTransportVariable);
-  const char* channel = std::getenv(protocol::kChannelVariable);
-  if (transport == nullptr || channel == nullptr) {
+  if (!protocol::channel_in_environment()) {
     std::cerr << program
               << ": this program is a cocopp solver; run it through `cocopp run case.yaml` "
                  "(COCOPP_TRANSPORT and COCOPP_CHANNEL are not set)\n";
     return 2;
   }
-  const pid_t coupler_pid = ::getppid();
+  pid_t coupler_pid = ::getppid();
   std::unique_ptr<protocol::Transport> link;
   try {
+    const protocol::ChannelAddress address = protocol::channel_from_environment();
+    // Over TCP the connection tells when the coupler has gone; the parent may be a shell or a
+    // batch script that the user started the solver from (started_by: user), not the coupler.
+    if (address.kind == protocol::TransportKind::kTcp) coupler_pid = 0;
     link = protocol::open_solver_channel(
-        protocol::channel_from_environment(), kConnectTimeoutSeconds,
+        address, kConnectTimeoutSeconds,
         [coupler_pid] {
-          if (::getppid() != coupler_pid) throw protocol::PeerClosed("the coupler has exited");
+          if (coupler_pid != 0 && ::getppid() != coupler_pid)
+            throw protocol::PeerClosed("the coupler has exited");
         },
         protocol::busy_wait_from_environment());
   } catch (const std::exception& e) {

@@ -16,6 +16,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
 
 import h5py
 import numpy as np
@@ -92,6 +93,40 @@ def write_case(directory, name, command, transport="pipe", steps=100, solver_con
         case.write(text)
 
 
+def started_by_user(bin_dir, project, env, reference_h5):
+    """ring_wall.py started by hand (started_by: user) from the channel file the coupler
+    writes: the built-in ring model's results to the bit."""
+    with open(os.path.join(project, "tcp.yaml")) as tcp:
+        text = tcp.read()
+    command = ("    command: [python3, ../ring_wall.py, length=0.05, diameter=0.01, cells=100, "
+               "rho_f=1000, e=3.0e5,\n              h=1.0e-3]\n")
+    check(command in text, "the case's wall command, to replace")
+    with open(os.path.join(project, "by_hand.yaml"), "w") as case:
+        case.write(text.replace(command, "    started_by: user\n"))
+    coupler = subprocess.Popen([os.path.join(bin_dir, "cocopp"), "run", "by_hand.yaml"],
+                               cwd=project, env=env, stdout=subprocess.PIPE,
+                               stderr=subprocess.STDOUT, text=True)
+    channel_file = os.path.join(project, "structure", "cocopp_channel_wall.env")
+    for _ in range(600):
+        if os.path.exists(channel_file) or coupler.poll() is not None:
+            break
+        time.sleep(0.05)
+    solver_env = {key: value for key, value in env.items() if not key.startswith("COCOPP_")}
+    solver_env["COCOPP_CHANNEL_FILE"] = channel_file
+    solver = subprocess.run(["python3", "../ring_wall.py", "length=0.05", "diameter=0.01",
+                             "cells=100", "rho_f=1000", "e=3.0e5", "h=1.0e-3"],
+                            cwd=os.path.join(project, "structure"), env=solver_env,
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                            timeout=120)
+    output, _ = coupler.communicate(timeout=120)
+    if coupler.returncode != 0 or solver.returncode != 0:
+        print(output[-2000:], solver.stdout[-2000:])
+    check(coupler.returncode == 0 and solver.returncode == 0,
+          "ring_wall.py started by the user connects through COCOPP_CHANNEL_FILE")
+    same_results(reference_h5, os.path.join(project, "results", "by_hand.h5"),
+                 "ring_wall.py started by the user")
+
+
 def main():
     bin_dir, source = sys.argv[1], sys.argv[2]
     env = dict(os.environ, COCOPP_BIN_DIR=bin_dir,
@@ -114,6 +149,7 @@ def main():
             check(result.returncode == 0, f"ring_wall.py runs over the {transport} transport")
             same_results(reference_h5, os.path.join(project, "results", f"{transport}.h5"),
                          f"ring_wall.py, {transport} transport")
+        started_by_user(bin_dir, project, env, reference_h5)
 
         # Substeps: the SDK drives the window; the built-in ring model's results to the bit.
         substepped = os.path.join(scratch, "flow_ringmodel_substeps")

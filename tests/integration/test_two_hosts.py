@@ -9,6 +9,8 @@ structure solver started in the other ("host B", 10.231.50.2) by its wrapper's `
 - the link cut in the middle of a run (the veth deleted): the run stops with an error naming
   the solver and the lost connection within the keepalive's 20 s, the steps done so far stay
   readable, and no solver process is left;
+- the structure started by hand in host B (`started_by: user`, the way a batch script starts
+  it), from the channel file the coupler writes: the same results to the bit;
 - a solver that cannot reach the coupler's address: a clear error, no hang;
 - with --openfoam, examples/tube/openfoam_wedge on 2 MPI ranks (case_2_ranks.yaml) with the
   fluid in host B: mpirun and its ranks there, rank 0 coupled over TCP; the one-machine run's
@@ -110,7 +112,7 @@ def wedge_across(bin_dir, source, scratch, across, host_a):
 
 
 def main():
-    bin_dir, source = sys.argv[1], sys.argv[2]
+    bin_dir, source = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
     with TwoHosts() as hosts, tempfile.TemporaryDirectory() as scratch:
         across = (f"    transport: tcp\n    host: {hosts.address_a}\n"
                   f"    launcher: [ip, netns, exec, {hosts.b}]\n")
@@ -129,6 +131,36 @@ def main():
         check(result.returncode == 0, "the tube across two hosts over TCP")
         same_results(os.path.join(local, "results/case.h5"),
                      os.path.join(remote, "results/case.h5"), "across two hosts")
+
+        by_hand = os.path.join(scratch, "by_hand")
+        write_case(by_hand, source, 100, f"    transport: tcp\n    host: {hosts.address_a}\n"
+                                         "    started_by: user\n    startup_timeout: 60\n")
+        coupler = subprocess.Popen(["ip", "netns", "exec", hosts.a,
+                                    os.path.join(bin_dir, "cocopp"), "run", "-q",
+                                    os.path.join(by_hand, "case.yaml")],
+                                   stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        channel_file = os.path.join(by_hand, "structure", "cocopp_channel_structure.env")
+        for _ in range(600):
+            if os.path.exists(channel_file) or coupler.poll() is not None:
+                break
+            time.sleep(0.05)
+        check(os.path.exists(channel_file)
+              and os.stat(channel_file).st_mode & 0o777 == 0o600,
+              "started by the user: the coupler wrote the channel file, for the user only")
+        solver = subprocess.run(["ip", "netns", "exec", hosts.b, "env",
+                                 f"COCOPP_CHANNEL_FILE={channel_file}",
+                                 os.path.join(bin_dir, "cocopp-tube-structure"),
+                                 "tube_structure.yaml"],
+                                cwd=os.path.join(by_hand, "structure"), stdout=subprocess.PIPE,
+                                stderr=subprocess.STDOUT, text=True, timeout=120)
+        output, _ = coupler.communicate(timeout=120)
+        if coupler.returncode != 0 or solver.returncode != 0:
+            print(output[-3000:], solver.stdout[-2000:])
+        check(coupler.returncode == 0 and solver.returncode == 0
+              and not os.path.exists(channel_file),
+              "the structure started by hand in host B: both ended well, the file removed")
+        same_results(os.path.join(local, "results/case.h5"),
+                     os.path.join(by_hand, "results/case.h5"), "started by hand in host B")
 
         unreachable = os.path.join(scratch, "unreachable")
         write_case(unreachable, source, 10,

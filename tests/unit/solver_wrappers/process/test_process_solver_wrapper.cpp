@@ -1,10 +1,14 @@
 // ProcessSolverWrapper driving cocopp-test-solver (tests/support) end to end, over both
 // transports, and through each way a solver can fail.
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <thread>
 
 #include "core/protocol/pipe_transport.hpp"
 #include "solver_wrappers/process/process_solver_wrapper.hpp"
@@ -370,6 +374,86 @@ TEST_F(ProcessSolverWrapperSetupTest, ASolverThatNeverConnectsTimesOut) {
   EXPECT_FALSE(process_alive(process.child_pid()));
   EXPECT_FALSE(
       std::filesystem::exists(directory_ / "flow" / protocol::PipeTransport::kToSolverFifo));
+}
+
+/// The test solver started as a user would, from outside the coupler: once `channel_file`
+/// appears (within 10 s), with COCOPP_CHANNEL_FILE naming it, in `directory`. Its pid (0 if
+/// the file never came); `mode` gets the file's permission bits.
+pid_t start_by_hand(const std::filesystem::path& channel_file,
+                    const std::filesystem::path& directory, std::filesystem::perms& mode) {
+  const auto end = Clock::now() + std::chrono::seconds(10);
+  while (!std::filesystem::exists(channel_file) && Clock::now() < end)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  if (!std::filesystem::exists(channel_file)) return 0;
+  mode = std::filesystem::status(channel_file).permissions();
+  const std::string solver = (bin_directory() / "cocopp-test-solver").string();
+  // Everything the child needs is made before fork(): after it, in a process with threads,
+  // only async-signal-safe calls (chdir, execve).
+  std::vector<std::string> variables = {"COCOPP_CHANNEL_FILE=" + channel_file.string()};
+  for (char** entry = environ; *entry != nullptr; ++entry)
+    if (std::string(*entry).rfind("COCOPP_", 0) != 0 ||
+        std::string(*entry).rfind("COCOPP_BIN", 0) == 0)
+      variables.emplace_back(*entry);
+  std::vector<char*> envp;
+  for (auto& variable : variables) envp.push_back(variable.data());
+  envp.push_back(nullptr);
+  std::string input = "test_solver.in";
+  char* argv[] = {const_cast<char*>(solver.c_str()), input.data(), nullptr};
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    if (::chdir(directory.c_str()) != 0) ::_exit(127);
+    ::execve(solver.c_str(), argv, envp.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+// Issue 50: a solver the user starts (a batch script's srun, another terminal) with
+// started_by: user. The coupler writes the channel's address and token to a file only the
+// user can read, waits for the solver there, removes the file once it is in, and runs it as
+// any other; its death mid-run is a closed connection, named. Nobody starting it is a timeout
+// that says how to start it.
+TEST_F(ProcessSolverWrapperSetupTest, ASolverTheUserStartsConnectsThroughTheChannelFile) {
+  write_text(directory_ / "flow/test_solver.in", "points 3\n");
+  const auto channel_file = directory_ / "flow/cocopp_channel_flow.env";
+  auto wrapper = create_flow("started_by: user\ntransport: tcp\nstartup_timeout: 20\n");
+  auto& process = dynamic_cast<ProcessSolverWrapper&>(*wrapper);
+  EXPECT_NO_THROW(wrapper->check());
+  EXPECT_CONTAINS(process.describe(), "flow: started by the user (in ");
+  std::filesystem::perms mode{};
+  pid_t solver = 0;
+  std::thread user([&] { solver = start_by_hand(channel_file, directory_ / "flow", mode); });
+  wrapper->initialize();
+  user.join();
+  ASSERT_GT(solver, 0);
+  EXPECT_EQ(mode, std::filesystem::perms::owner_read | std::filesystem::perms::owner_write);
+  EXPECT_FALSE(std::filesystem::exists(channel_file));  // used: gone
+  EXPECT_EQ(process.solver_pid(), solver);
+  Interface input = wrapper->input_interface();
+  wrapper->initialize_step(1, 0.01);
+  EXPECT_EQ(wrapper->solve(input).values("wall", "pressure")(0, 0), 1.0);
+  wrapper->finalize_step();
+  ::kill(solver, SIGKILL);
+  ::waitpid(solver, nullptr, 0);
+  const std::string lost = solver_error_of([&] {
+    wrapper->initialize_step(2, 0.02);
+    wrapper->solve(input);
+  });
+  EXPECT_CONTAINS(lost, "solver 'flow' (started by the user) closed the connection during ");
+  EXPECT_CONTAINS(lost, "step 2");
+
+  auto unstarted = create_flow("started_by: user\ntransport: tcp\nstartup_timeout: 0.3\n");
+  EXPECT_CONTAINS(solver_error_of([&] { unstarted->initialize(); }),
+                  "solver 'flow' (started by the user) did not connect within 0.3 s (before the "
+                  "first step): start it with COCOPP_CHANNEL_FILE=" +
+                      channel_file.string());
+  EXPECT_FALSE(std::filesystem::exists(channel_file));
+
+  EXPECT_CONTAINS(error_message<CaseError>([&] { create_flow("started_by: user\n"); }),
+                  "'started_by': a solver the user starts connects over TCP: add transport: tcp");
+  EXPECT_CONTAINS(error_message<CaseError>(
+                      [&] { create_flow("started_by: user\ntransport: tcp\ncommand: [./s]\n"); }),
+                  "'command': the coupler starts nothing for a solver with started_by: user");
 }
 
 TEST_F(ProcessSolverWrapperSetupTest, AProgramThatIsNoSolverIsReported) {
