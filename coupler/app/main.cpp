@@ -33,15 +33,18 @@ int main(int argc, char** argv) {
   auto* run = app.add_subcommand(
       "run",
       "Run a case: start the solvers, march in time with the coupled solver, write "
-      "<results_directory>/<name>.h5 (HDF5, " + documentation("results.md") +
+      "<results_directory>/<name>.h5 (HDF5, " +
+          documentation("results.md") +
           ") and <name>.summary.json. Prints "
-      "one progress line per time step (a * marks a step accepted at the iteration limit, a ~ one "
-      "accepted there with the residual at the solvers' noise) and a timing summary. Exit code 0: "
-      "completed; 3: stalled (every step computed, some accepted at the iteration limit above "
-      "the solvers' noise); 1: the run stopped (divergence, solver failure, interrupt, results "
-      "that cannot "
-      "be written; results so far are kept) or did not start (another run holds the case, the "
-      "results location cannot be used); 2: invalid case file or command line.");
+          "one progress line per time step (a * marks a step accepted at the iteration limit, a ~ "
+          "one "
+          "accepted there with the residual at the solvers' noise) and a timing summary. Exit code "
+          "0: "
+          "completed; 3: stalled (every step computed, some accepted at the iteration limit above "
+          "the solvers' noise); 1: the run stopped (divergence, solver failure, interrupt, results "
+          "that cannot "
+          "be written; results so far are kept) or did not start (another run holds the case, the "
+          "results location cannot be used); 2: invalid case file or command line.");
   run->add_option("case", case_file, "case file (.yaml, .yml or .json)")
       ->required()
       ->check(CLI::ExistingFile);
@@ -52,7 +55,8 @@ int main(int argc, char** argv) {
                 "continue a run from its saved state (<results_directory>/<name>.state.h5, "
                 "written at the end of a run and every settings.state_interval steps) up to the "
                 "case's end: the solvers restart from what they saved with it, the results file "
-                "is continued after the saved step (" + documentation("results.md") + ")");
+                "is continued after the saved step (" +
+                    documentation("results.md") + ")");
   run->add_flag("--fresh-coupling", options.fresh_coupling,
                 "with --restart: the coupled solver's own memory (secant columns, Aitken's "
                 "factor, scaling) starts afresh and only the predictor's history is taken, so "
@@ -78,9 +82,10 @@ int main(int argc, char** argv) {
       "against the reference. Benchmark file (YAML/JSON): base_case: <case file>; "
       "output_directory: <dir> (default results/bench); reference: {results: <file.h5>} or "
       "{tolerance: 1e-10}; settings: {...} (merged into every run); variants: [{name: ..., "
-      "coupled_solver: {...}, settings: {...}}, ...]. See " + documentation("bench.md") +
+      "coupled_solver: {...}, settings: {...}}, ...]. See " +
+          documentation("bench.md") +
           ". Exit code 0: all runs "
-      "made (diverging variants included); 1: stopped; 2: invalid file.");
+          "made (diverging variants included); 1: stopped; 2: invalid file.");
   bench->add_option("bench", bench_file, "benchmark file (.yaml, .yml or .json)")
       ->required()
       ->check(CLI::ExistingFile);
@@ -98,8 +103,9 @@ int main(int argc, char** argv) {
       "per model part and step (the points at their initial coordinates, the variables of x and "
       "y as point arrays) in <name>_vtk/, and the time series <name>.pvd next to them, as a run "
       "with settings.vtk_output: true writes them while it goes (" +
-          documentation("results.md") + "). Exit code 0, "
-      "or 1 if the file cannot be read or the files cannot be written.");
+          documentation("results.md") +
+          "). Exit code 0, "
+          "or 1 if the file cannot be read or the files cannot be written.");
   export_vtk->add_option("results", results_file, "results file (<name>.h5)")
       ->required()
       ->check(CLI::ExistingFile);
