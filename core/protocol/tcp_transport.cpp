@@ -1,7 +1,6 @@
 #include "core/protocol/tcp_transport.hpp"
 
 #include <arpa/inet.h>
-#include <fcntl.h>
 #include <netdb.h>
 #include <netinet/in.h>
 #include <netinet/tcp.h>

@@ -586,7 +586,7 @@ def calculix_wrapper(p, prefix):
             "SURFACEALL", "all of the sector's surface (SURFACEN: its x-y side)")
         wrapper["surface_stiffness"] = case.commented(
             float(f"{surface_stiffness(p):.6g}"), "Pa/m, the Newton step's wire stiffness")
-        if p["coupling"]["surface_compliance"]:
+        if elastic_compliance(p):
             wrapper["surface_compliance"] = case.commented(
                 "surface_compliance.txt", "the wire's elastic compliance between its\n"
                 "surface lines (surface_compliance.py), in that Newton step")
@@ -625,6 +625,12 @@ def displacement_driven(p):
     return drive == "displacement"
 
 
+def elastic_compliance(p):
+    """coupling.surface_compliance: the displacement drive's Newton step with the wire's elastic
+    compliance between its surface lines (surface_compliance.py, computed with the case)."""
+    return displacement_driven(p) and p["coupling"]["surface_compliance"]
+
+
 def probed_film(p):
     """coupling.film_stiffness: probed (the film's own sensitivity drives the wire) or local
     (a stiffness per face from its pressure and gap); a model of the displacement drive's, of
@@ -634,7 +640,7 @@ def probed_film(p):
         sys.exit(f"make_case.py: coupling.film_stiffness: '{model}' is not probed or local")
     if not displacement_driven(p):
         return False
-    if model == "probed" and not p["coupling"]["surface_compliance"]:
+    if model == "probed" and not elastic_compliance(p):
         sys.exit("make_case.py: coupling.film_stiffness: probed needs coupling.surface_compliance:"
                  " true (the probed film alone with a stiffness per line diverges, "
                  "docs/wire-drawing.md)")
@@ -700,7 +706,7 @@ def write_solvers(p, refine, output):
         sys.exit(f"make_case.py: mesh.wire_model: '{model}' is not axisymmetric or sector")
     deck = sector_wire_deck(p, refine) if model == "sector" else wire_deck(p, refine)
     (output / "structure" / "wire.inp").write_text(deck)
-    if displacement_driven(p) and p["coupling"]["surface_compliance"]:
+    if elastic_compliance(p):
         surface_compliance.write_checked(output / "structure", patched_ccx())
     return film
 

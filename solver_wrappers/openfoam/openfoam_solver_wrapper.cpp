@@ -42,6 +42,9 @@ std::vector<std::pair<std::string, std::string>> sensitivity_probe(const Setting
                                                                    int cores) {
   if (!settings.has("sensitivity_probe")) return {};
   const Settings probe = settings.child("sensitivity_probe");
+  if (settings.get<std::string>("gap_patch", "").empty())
+    settings.fail("sensitivity_probe",
+                  "the probe measures a film: give its gap_patch too (the wall it faces)");
   if (cores != 1)
     settings.fail("sensitivity_probe",
                   fmt::format("the film probes itself in a serial run only: remove the key or "
@@ -94,9 +97,6 @@ class OpenFoamSolverWrapper : public ProcessSolverWrapper {
       : OpenFoamSolverWrapper(settings, run, read_boundary_names(settings),
                               settings.get_int_in_range("cores", 1, 1),
                               settings.get<std::string>("gap_patch", "")) {
-    if (settings.has("sensitivity_probe") && settings.get<std::string>("gap_patch", "").empty())
-      settings.fail("sensitivity_probe",
-                    "the probe measures a film: give its gap_patch too (the wall it faces)");
     set_case_environment(sensitivity_probe(settings, cores_));
   }
 

@@ -531,22 +531,21 @@ def _check_coupler(coupler_pid):
         raise _ChannelLost("the coupler has exited")
 
 
-class _PipeChannel:
-    """Two FIFOs the coupler created in the channel directory."""
+class _StreamChannel:
+    """Frames over a byte stream: a length prefix, then the payload. A subclass reads with
+    _read_chunk (b"" at the end) and names what the coupler closed in CLOSED."""
 
-    def __init__(self, directory, coupler_pid):
-        # Plain blocking opens, as the protocol allows: the coupler opens its write end of the
-        # requests as soon as we open the read end, and already holds the read end of the
-        # replies. (A coupler that dies meanwhile takes us with it: PR_SET_PDEATHSIG.)
-        self.requests = os.open(os.path.join(directory, "cocopp_to_solver.fifo"), os.O_RDONLY)
-        self.replies = os.open(os.path.join(directory, "cocopp_from_solver.fifo"), os.O_WRONLY)
+    CLOSED = "the coupler closed the channel"
+
+    def _read_chunk(self, size):
+        raise NotImplementedError
 
     def _read_exactly(self, size):
         chunks, remaining = [], size
         while remaining > 0:
-            chunk = os.read(self.requests, min(remaining, 1 << 20))
+            chunk = self._read_chunk(min(remaining, 1 << 20))
             if not chunk:
-                raise _ChannelLost("the coupler closed the request pipe")
+                raise _ChannelLost(self.CLOSED)
             chunks.append(chunk)
             remaining -= len(chunk)
         return b"".join(chunks)
@@ -556,6 +555,22 @@ class _PipeChannel:
         if not 1 <= length <= MAX_PAYLOAD:
             raise ProtocolError(f"a frame of {length} bytes was announced (corrupt stream?)")
         return self._read_exactly(length)
+
+
+class _PipeChannel(_StreamChannel):
+    """Two FIFOs the coupler created in the channel directory."""
+
+    CLOSED = "the coupler closed the request pipe"
+
+    def __init__(self, directory, coupler_pid):
+        # Plain blocking opens, as the protocol allows: the coupler opens its write end of the
+        # requests as soon as we open the read end, and already holds the read end of the
+        # replies. (A coupler that dies meanwhile takes us with it: PR_SET_PDEATHSIG.)
+        self.requests = os.open(os.path.join(directory, "cocopp_to_solver.fifo"), os.O_RDONLY)
+        self.replies = os.open(os.path.join(directory, "cocopp_from_solver.fifo"), os.O_WRONLY)
+
+    def _read_chunk(self, size):
+        return os.read(self.requests, size)
 
     def send(self, payload):
         data = memoryview(struct.pack("<I", len(payload)) + payload)
@@ -581,9 +596,11 @@ def _read_channel_file(path):
     return variables
 
 
-class _TcpChannel:
+class _TcpChannel(_StreamChannel):
     """One TCP connection to the coupler at "host:port": the greeting with the run's token
     first, the coupler's welcome, then frames as over the pipes (docs/protocol.md)."""
+
+    CLOSED = "the coupler closed the connection"
 
     GREETING = b"COCOPP-TCP-1 "
     WELCOME = b"COCOPP-WELCOME\n"
@@ -608,24 +625,11 @@ class _TcpChannel:
             raise ProtocolError(f"the peer at {channel} is not a cocopp coupler")
         self.socket.settimeout(None)  # the coupler's own timeouts bound a step
 
-    def _read_exactly(self, size):
-        chunks, remaining = [], size
-        while remaining > 0:
-            try:
-                chunk = self.socket.recv(min(remaining, 1 << 20))
-            except OSError as error:
-                raise _ChannelLost(f"the connection to the coupler was lost: {error}") from error
-            if not chunk:
-                raise _ChannelLost("the coupler closed the connection")
-            chunks.append(chunk)
-            remaining -= len(chunk)
-        return b"".join(chunks)
-
-    def receive(self):
-        (length,) = struct.unpack("<I", self._read_exactly(4))
-        if not 1 <= length <= MAX_PAYLOAD:
-            raise ProtocolError(f"a frame of {length} bytes was announced (corrupt stream?)")
-        return self._read_exactly(length)
+    def _read_chunk(self, size):
+        try:
+            return self.socket.recv(size)
+        except OSError as error:
+            raise _ChannelLost(f"the connection to the coupler was lost: {error}") from error
 
     def send(self, payload):
         try:

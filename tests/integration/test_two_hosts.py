@@ -96,9 +96,9 @@ def wedge_across(bin_dir, source, scratch, across, host_a):
                                                            WM_PROJECT_DIR="/usr/share/openfoam"))
         path = os.path.join(directory, "case_2_ranks.yaml")
         text = open(path).read()
-        rep_text = "    cores: 2\n"
-        assert text.count(rep_text) == 1
-        open(path, "w").write(text.replace(rep_text, rep_text + keys))
+        cores_line = "    cores: 2\n"
+        assert text.count(cores_line) == 1
+        open(path, "w").write(text.replace(cores_line, cores_line + keys))
         command = [os.path.join(bin_dir, "cocopp"), "run", "-q", path]
         if name == "remote":
             command = ["ip", "netns", "exec", host_a] + command
